@@ -1,0 +1,98 @@
+"""Options and error handling shared by the subcommands (rasterio's ``rio/options.py`` is the model).
+
+Bad input of any kind, a click usage error or an ``InvalidInputError`` from the library, is
+reported as the single line ``Error: <message>`` on stderr with exit code 2: no usage block, no
+traceback. Subcommands get this by being ``Command`` instances (the group's default class).
+"""
+from __future__ import annotations
+
+import math
+import pathlib
+
+import click
+
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.reduced.params import DIAMETER_RANGE_MM
+from stitchswitch.reduced.solve import SOLVERS
+
+
+class InputError(click.ClickException):
+    """Bad input: shown as one line ``Error: <message>``, exit code 2 (like click usage errors)."""
+
+    exit_code = 2
+
+    def __init__(self, message: str) -> None:
+        super().__init__(" ".join(str(message).splitlines()))
+
+
+class _OneLineErrors:
+    """Mixin for click commands: usage errors and library input errors become ``InputError``."""
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        try:
+            return super().parse_args(ctx, args)
+        except click.exceptions.NoArgsIsHelpError:
+            raise
+        except click.UsageError as exc:
+            raise InputError(exc.format_message()) from None
+
+    def invoke(self, ctx: click.Context):
+        try:
+            return super().invoke(ctx)
+        except InvalidInputError as exc:
+            raise InputError(str(exc)) from None
+
+
+class Command(_OneLineErrors, click.Command):
+    """A subcommand whose input errors are one line."""
+
+
+class Group(_OneLineErrors, click.Group):
+    """The group; its subcommands default to ``Command``."""
+
+    command_class = Command
+
+
+class FiniteFloat(click.ParamType):
+    """A float that rejects nan and inf by name (click.FLOAT accepts 'nan')."""
+
+    name = "float"
+
+    def convert(self, value, param, ctx) -> float:
+        try:
+            v = float(value)
+        except (TypeError, ValueError):
+            self.fail(f"{value!r} is not a number", param, ctx)
+        if not math.isfinite(v):
+            self.fail(f"{value!r} is not a finite number", param, ctx)
+        return v
+
+
+FINITE_FLOAT = FiniteFloat()
+
+verbose_opt = click.option(
+    "--verbose", "-v", count=True, help="More log messages on stderr (-v info, -vv debug).")
+quiet_opt = click.option(
+    "--quiet", "-q", count=True, help="Fewer log messages on stderr (-q hides warnings).")
+
+diameter_opt = click.option(
+    "--diameter", "-d", "diameter_mm", type=FINITE_FLOAT, default=40.0, show_default=True,
+    metavar="MM",
+    help="Patch diameter in mm, measured on the pre-stretched fabric; supported range "
+         f"[{DIAMETER_RANGE_MM[0]:g}, {DIAMETER_RANGE_MM[1]:g}].")
+fill_opt = click.option(
+    "--fill", "-p", type=FINITE_FLOAT, default=0.8, show_default=True, metavar="P",
+    help="Fill fraction of the embroidery, in (0, 1].")
+material_opt = click.option(
+    "--material", "material_path", type=click.Path(path_type=pathlib.Path), default=None,
+    metavar="FILE",
+    help="Material JSON file (format: stitchswitch/data/default_material.json). "
+         "Default: the built-in material.")
+solver_opt = click.option(
+    "--solver", type=click.Choice(SOLVERS), default="newton", show_default=True,
+    help="newton: certified projected Newton; adam: the paper's projected Adam baseline.")
+max_iter_opt = click.option(
+    "--max-iter", type=click.IntRange(min=1), default=None, metavar="N",
+    help="Iteration budget: Newton iterations (default 500) or Adam steps (default 20000).")
+json_opt = click.option(
+    "--json", "as_json", is_flag=True, help="Print one JSON object instead of the table.")
