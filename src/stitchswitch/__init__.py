@@ -7,8 +7,8 @@ as in the paper). The reduced model works internally in units of the node spacin
 """
 from stitchswitch.errors import StitchSwitchError, InvalidInputError
 from stitchswitch.reduced.params import Material, Patch, DEFAULT_MATERIAL
-# from stitchswitch.reduced.solve import solve, Solution
-# from stitchswitch.reduced.keypoints import keypoints, Keypoints
+from stitchswitch.reduced.solve import solve, Solution
+from stitchswitch.reduced.keypoints import keypoints, Keypoints
 
 __version__ = "0.1.0"
 __all__ = [

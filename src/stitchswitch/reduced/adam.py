@@ -7,7 +7,7 @@ that were used: learning rate 0.05, gradient clipping at global norm 1.0, 20,000
 What we do (``minimize``):
 
 * The free variables are x = (r_1..r_{N-1}, z_0..z_{N-1}) in dR units (r_0 = 0 is fixed).
-* Each step: gradient of the total energy (``assembly.gradient``), clipped to global
+* Each step: gradient of the total energy (``assembly.Model.gradient``), clipped to global
   Euclidean norm ``clip``; standard Adam moments m, v with bias correction (``beta1``,
   ``beta2``, ``eps``); step x <- x - lr * m_hat / (sqrt(v_hat) + eps); then the state is
   projected onto the constraint set with ``constraints.project`` (pole r_0 = 0, z_0 = z_1,
@@ -73,9 +73,9 @@ def _validate(steps, lr, clip, beta1, beta2, eps, tol):
     return int(steps), lr, clip, float(beta1), float(beta2), eps, tol
 
 
-def _certificate(r: np.ndarray, z: np.ndarray, grid: Grid) -> float:
+def _certificate(r: np.ndarray, z: np.ndarray, model: assembly.Model) -> float:
     """The Newton solver's certificate: max-norm of the projected gradient."""
-    g = assembly.gradient(r, z, grid)
+    g = model.gradient(r, z)
     return kkt_residual(g[0::2], g[1::2], z[:-1] - z[1:])
 
 
@@ -91,7 +91,8 @@ def minimize(grid: Grid, r0: np.ndarray, z0: np.ndarray, *, tol: float, steps: i
     r, z = project(np.asarray(r0, dtype=float), np.asarray(z0, dtype=float))
     if r.size != n or z.size != n:
         raise InvalidInputError(f"r0, z0: sizes {r.size}, {z.size} do not match n_nodes {n}")
-    E = assembly.energy(r, z, grid)
+    model = assembly.Model(grid)
+    E = model.energy(r, z)
     if not np.isfinite(E):
         return NewtonResult(r, z, float(E), np.inf, 0, False, None,
                             "adam: start is outside the energy's domain")
@@ -100,7 +101,7 @@ def minimize(grid: Grid, r0: np.ndarray, z0: np.ndarray, *, tol: float, steps: i
     v = np.zeros(2 * n - 1)
     rejected = 0
     for t in range(1, steps + 1):
-        g = assembly.gradient(r, z, grid)
+        g = model.gradient(r, z)
         gx = np.concatenate([g[0::2][1:], g[1::2]])
         norm = float(np.linalg.norm(gx))
         if norm > clip:
@@ -113,7 +114,7 @@ def minimize(grid: Grid, r0: np.ndarray, z0: np.ndarray, *, tol: float, steps: i
         for _ in range(MAX_HALVINGS + 1):
             r_try = np.concatenate([[0.0], r[1:] - step[:n - 1]])
             r_new, z_new = project(r_try, z - step[n - 1:])
-            E_new = assembly.energy(r_new, z_new, grid)
+            E_new = model.energy(r_new, z_new)
             if np.isfinite(E_new):
                 r, z, E = r_new, z_new, E_new
                 break
@@ -121,7 +122,7 @@ def minimize(grid: Grid, r0: np.ndarray, z0: np.ndarray, *, tol: float, steps: i
         else:
             rejected += 1
 
-    residual = _certificate(r, z, grid)
+    residual = _certificate(r, z, model)
     converged = bool(residual <= tol)
     message = (f"adam: {steps} steps, residual {residual:.1e} "
                f"{'<=' if converged else '>'} tol {tol:g} "

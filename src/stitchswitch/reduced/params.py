@@ -78,7 +78,7 @@ class Material:
     eta: float = 1.7
     n_nodes: int = 300
     dr_max_mm: float = 0.5
-    compression_ratio: float = 1e-3
+    compression_ratio: float = 1e-2
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -123,8 +123,8 @@ class Material:
 #: qualitative findings appear (near-flat small sparse patches, h growing with d, a flatter
 #: "mushroom" profile at high fill, h of the paper's magnitude). See docs/model.md.
 DEFAULT_MATERIAL = Material(
-    w_b_emb=1.0,
-    w_b_fab=0.2,
+    w_b_emb=10.0,
+    w_b_fab=2.0,
     k_r_emb=1.0,
     k_r_fab=0.5,
     k_theta_emb=1.0,

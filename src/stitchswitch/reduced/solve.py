@@ -93,11 +93,13 @@ def solve(patch: Patch, material: Material = DEFAULT_MATERIAL, *, solver: str = 
           warm_start: Solution | None = None, **solver_options) -> Solution:
     """Equilibrium profile of one design.
 
-    ``solver="newton"`` (default): the certified projected Newton method, started by the
-    release continuation (or from ``warm_start``, a neighbouring design's Solution, falling back
-    to the continuation if that does not converge). ``solver="adam"``: the paper's projected
-    Adam with gradient clipping, from the flat state plus the same seed bump; its result is
-    certified the same way and is usually *not* converged. ``max_iter`` bounds Newton
+    ``solver="newton"`` (default): the certified projected Newton method, started from the
+    released state (``continuation.released_state``: the flat hoop state with a small upward
+    seed bump, the same start as the Adam baseline), or from ``warm_start`` (a neighbouring
+    design's Solution) if given. If that does not converge, the release continuation of the
+    rest metric is tried with the remaining budget. ``solver="adam"``: the paper's projected
+    Adam with gradient clipping from the same released state; its result is certified the
+    same way and is usually *not* converged. ``max_iter`` bounds Newton
     iterations (default 500) or Adam steps (default 20000)."""
     if solver not in SOLVERS:
         raise InvalidInputError(f"solver: {solver!r} is not one of {', '.join(SOLVERS)}")
@@ -115,12 +117,16 @@ def solve(patch: Patch, material: Material = DEFAULT_MATERIAL, *, solver: str = 
             if not result.converged:
                 result = None
         if result is None:
-            result, more = continuation.release(grid, tol=tol, max_iter=max(budget - used, 0))
+            result = newton.minimize(grid, *continuation.released_state(grid), tol=tol,
+                                     max_iter=max(budget - used, 0))
+            used += result.iterations
+        if not result.converged and used < budget:
+            result, more = continuation.release(grid, tol=tol, max_iter=budget - used)
             used += more
     else:
         from stitchswitch.reduced import adam
         steps = 20000 if max_iter is None else int(max_iter)
-        result = adam.minimize(grid, grid.R.copy(), continuation.seed_bump(grid),
+        result = adam.minimize(grid, *continuation.released_state(grid),
                                tol=tol, steps=steps, **solver_options)
         used = result.iterations
     ms = (time.perf_counter() - t0) * 1e3

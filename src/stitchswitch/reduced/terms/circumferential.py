@@ -11,6 +11,7 @@ node i+1 (STENCIL = 1); only r_{i+1} enters.
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 STENCIL = 1
 OFFSET = 1
@@ -21,22 +22,29 @@ def strain(r, grid) -> np.ndarray:
     return r[1:] - grid.lam * grid.R[1:]
 
 
-def _weight(grid) -> np.ndarray:
-    return grid.k_theta / (grid.lam * grid.R[1:] * grid.n_nodes)
+def coefficients(grid):
+    """(rest ring radius lambda R_{i+1}, weight k_theta / (lambda R_{i+1} N)) per node i+1."""
+    rest = grid.lam * grid.R[1:]
+    return rest, grid.k_theta / (rest * grid.n_nodes)
 
 
-def energy(geo, grid) -> float:
-    eps = strain(geo.r, grid)
-    return float(np.sum(_weight(grid) * eps * eps))
+@njit(cache=True)
+def _kernel(r, rest, w, grad, hb, want_g, want_h):
+    E = 0.0
+    for i in range(rest.size):
+        eps = r[i + 1] - rest[i]
+        E += w[i] * eps * eps
+        if want_g:
+            grad[2 * i + 2] += 2.0 * w[i] * eps
+            if want_h:
+                hb[0, 2 * i + 2] += 2.0 * w[i]
+    return E
 
 
-def local(geo, grid, hessian: bool = True):
-    eps = strain(geo.r, grid)
-    a = _weight(grid)
-    g = np.zeros((eps.size, 2))
-    g[:, 0] = 2 * a * eps
-    H = None
-    if hessian:
-        H = np.zeros((eps.size, 2, 2))
-        H[:, 0, 0] = 2 * a
-    return a * eps * eps, g, H
+def energy(r, z, coef) -> float:
+    return _kernel(r, *coef, r, r[:0, None], False, False)
+
+
+def accumulate(r, z, coef, grad, hb) -> float:
+    """Add the gradient (and the Hessian if ``hb`` has columns) into grad / hb; return E."""
+    return _kernel(r, *coef, grad, hb, True, hb.shape[1] > 0)

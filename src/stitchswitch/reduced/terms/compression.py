@@ -11,39 +11,49 @@ segment, with t = l / lambda and c = ``Material.compression_ratio``:
 psi(1) = psi'(1) = 0 and psi''(1) = 2, so near the rest length E_c is the radial term with
 stiffness c k_r acting on compression; psi -> infinity as t -> 0, so no segment collapses
 and the problem has a true minimizer. c -> 0 recovers the printed model (tested: the
-keypoints converge as c decreases).
+keypoints converge as c decreases). The energy is +inf for a segment of zero length.
 """
 from __future__ import annotations
 
-import numpy as np
+import math
 
-from stitchswitch.reduced.terms.segment import segment_hessian
+import numpy as np
+from numba import njit
+
+from stitchswitch.reduced.terms.segment import add_segment
 
 STENCIL = 2
 OFFSET = 0
 
 
-def _weight(grid) -> np.ndarray:
-    return grid.compression * grid.k_r * grid.lam ** 3 * grid.R[1:] / grid.n_nodes
+def coefficients(grid):
+    """(lambda, weight c k_r lambda^3 R_{i+1} / N) per segment."""
+    return grid.lam, grid.compression * grid.k_r * grid.lam ** 3 * grid.R[1:] / grid.n_nodes
 
 
-def _psi(t):
-    """psi(t), psi'(t), psi''(t); zero for t >= 1."""
-    ts = np.minimum(t, 1.0)
-    return 2.0 * (ts - 1.0 - np.log(ts)), 2.0 * (1.0 - 1.0 / ts), np.where(t < 1.0, 2.0 / (ts * ts), 0.0)
+@njit(cache=True)
+def _kernel(r, z, lam, w, grad, hb, want_g, want_h):
+    E = 0.0
+    for i in range(r.size - 1):
+        vr, vz = r[i + 1] - r[i], z[i + 1] - z[i]
+        l = math.sqrt(vr * vr + vz * vz)
+        if l <= 0.0:
+            return math.inf
+        t = l / lam[i]
+        if t >= 1.0:
+            continue
+        E += w[i] * 2.0 * (t - 1.0 - math.log(t))
+        if want_g:
+            d1 = w[i] * 2.0 * (1.0 - 1.0 / t) / lam[i]
+            d2 = w[i] * 2.0 / (t * t * lam[i] * lam[i])
+            add_segment(grad, hb, i, d1, d2, vr, vz, l, want_h)
+    return E
 
 
-def energy(geo, grid) -> float:
-    if np.any(geo.l <= 0):
-        return np.inf
-    psi, _, _ = _psi(geo.l / grid.lam)
-    return float(np.sum(_weight(grid) * psi))
+def energy(r, z, coef) -> float:
+    return _kernel(r, z, *coef, r, r[:0, None], False, False)
 
 
-def local(geo, grid, hessian: bool = True):
-    a = _weight(grid)
-    psi, dpsi, d2psi = _psi(geo.l / grid.lam)
-    c1 = a * dpsi / grid.lam
-    g = c1[:, None] * geo.length_gradient()
-    H = segment_hessian(a * d2psi / grid.lam ** 2, c1, geo) if hessian else None
-    return a * psi, g, H
+def accumulate(r, z, coef, grad, hb) -> float:
+    """Add the gradient (and the Hessian if ``hb`` has columns) into grad / hb; return E."""
+    return _kernel(r, z, *coef, grad, hb, True, hb.shape[1] > 0)

@@ -16,9 +16,10 @@ and convex: the stiffness stays at h''(e*) = 1 / (CUTOFF g) for every larger str
 """
 from __future__ import annotations
 
-import numpy as np
+import math
 
-from stitchswitch.reduced.terms.circumferential import strain
+import numpy as np
+from numba import njit
 
 STENCIL = 1
 OFFSET = 1
@@ -27,33 +28,48 @@ OFFSET = 1
 CUTOFF = 0.01
 
 
-def h(e: np.ndarray, gamma: float):
-    """h, h', h'' of the corrected hardening function, C2-continued past (1 - CUTOFF) gamma."""
-    e = np.asarray(e, dtype=float)
+@njit(cache=True)
+def h_scalar(e, gamma):
+    """h(e), h'(e), h''(e) of the corrected hardening function, C2-continued past the cutoff."""
     es = (1.0 - CUTOFF) * gamma
-    ec = np.minimum(e, es)
-    lg = np.log1p(-ec / gamma)
+    ec = min(e, es)
+    lg = math.log1p(-ec / gamma)
     v, d1, d2 = (gamma - ec) * lg + ec, -lg, 1.0 / (gamma - ec)
-    over = e > es
-    dx = np.where(over, e - es, 0.0)
-    return (v + d1 * dx + 0.5 * d2 * dx * dx, d1 + d2 * dx, d2)
+    if e > es:
+        dx = e - es
+        v, d1 = v + d1 * dx + 0.5 * d2 * dx * dx, d1 + d2 * dx
+    return v, d1, d2
 
 
-def energy(geo, grid) -> float:
-    if grid.w_log == 0.0:
-        return 0.0
-    v, _, _ = h(strain(geo.r, grid), grid.gamma)
-    return float(grid.w_log / grid.n_nodes * np.sum(v))
+def h(e, gamma: float):
+    """Vectorized ``h_scalar``: arrays h, h', h''."""
+    return np.vectorize(h_scalar, otypes=[float, float, float])(e, gamma)
 
 
-def local(geo, grid, hessian: bool = True):
-    eps = strain(geo.r, grid)
-    a = grid.w_log / grid.n_nodes
-    v, d1, d2 = h(eps, grid.gamma)
-    g = np.zeros((eps.size, 2))
-    g[:, 0] = a * d1
-    H = None
-    if hessian:
-        H = np.zeros((eps.size, 2, 2))
-        H[:, 0, 0] = a * d2
-    return a * v, g, H
+@njit(cache=True)
+def _kernel(r, rest, gamma, a, grad, hb, want_g, want_h):
+    E = 0.0
+    if a == 0.0:
+        return E
+    for i in range(rest.size):
+        v, d1, d2 = h_scalar(r[i + 1] - rest[i], gamma)
+        E += a * v
+        if want_g:
+            grad[2 * i + 2] += a * d1
+            if want_h:
+                hb[0, 2 * i + 2] += a * d2
+    return E
+
+
+def coefficients(grid):
+    """(rest ring radius lambda R_{i+1} per node i+1, gamma, w_log / N)."""
+    return grid.lam * grid.R[1:], grid.gamma, grid.w_log / grid.n_nodes
+
+
+def energy(r, z, coef) -> float:
+    return _kernel(r, *coef, r, r[:0, None], False, False)
+
+
+def accumulate(r, z, coef, grad, hb) -> float:
+    """Add the gradient (and the Hessian if ``hb`` has columns) into grad / hb; return E."""
+    return _kernel(r, *coef, grad, hb, True, hb.shape[1] > 0)

@@ -8,26 +8,41 @@ is what keeps it from collapsing.
 """
 from __future__ import annotations
 
-import numpy as np
+import math
 
-from stitchswitch.reduced.terms.segment import segment_hessian
+import numpy as np
+from numba import njit
+
+from stitchswitch.reduced.terms.segment import add_segment
 
 STENCIL = 2
 OFFSET = 0
 
 
-def _weight(grid) -> np.ndarray:
-    return grid.k_r * grid.lam * grid.R[1:] / grid.n_nodes
+def coefficients(grid):
+    """(lambda, weight k_r lambda R_{i+1} / N) per segment."""
+    return grid.lam, grid.k_r * grid.lam * grid.R[1:] / grid.n_nodes
 
 
-def energy(geo, grid) -> float:
-    s = np.maximum(geo.l - grid.lam, 0.0)
-    return float(np.sum(_weight(grid) * s * s))
+@njit(cache=True)
+def _kernel(r, z, lam, w, grad, hb, want_g, want_h):
+    E = 0.0
+    for i in range(r.size - 1):
+        vr, vz = r[i + 1] - r[i], z[i + 1] - z[i]
+        l = math.sqrt(vr * vr + vz * vz)
+        s = l - lam[i]
+        if s <= 0.0:
+            continue
+        E += w[i] * s * s
+        if want_g:
+            add_segment(grad, hb, i, 2.0 * w[i] * s, 2.0 * w[i], vr, vz, l, want_h)
+    return E
 
 
-def local(geo, grid, hessian: bool = True):
-    a = _weight(grid)
-    s = np.maximum(geo.l - grid.lam, 0.0)
-    g = (2 * a * s)[:, None] * geo.length_gradient()
-    H = segment_hessian(2 * a * (s > 0), 2 * a * s, geo) if hessian else None
-    return a * s * s, g, H
+def energy(r, z, coef) -> float:
+    return _kernel(r, z, *coef, r, r[:0, None], False, False)
+
+
+def accumulate(r, z, coef, grad, hb) -> float:
+    """Add the gradient (and the Hessian if ``hb`` has columns) into grad / hb; return E."""
+    return _kernel(r, z, *coef, grad, hb, True, hb.shape[1] > 0)

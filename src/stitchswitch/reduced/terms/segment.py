@@ -1,56 +1,55 @@
-"""Geometry shared by the terms: segment vectors, lengths and their derivatives.
-
-Built once per evaluation by ``assembly`` and handed to every term. Segment i joins nodes i
-and i+1; its local dofs are (r_i, z_i, r_{i+1}, z_{i+1})."""
+"""Kernels shared by the terms: scattering local gradients and Hessians into the global
+arrays. Global dofs are interleaved node by node (dof 2i = r_i, dof 2i+1 = z_i); the Hessian
+is kept in LAPACK lower band storage ``hb[k, j] = H[j + k, j]`` with k = 0..5 (every term
+couples at most three consecutive nodes)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
+from numba import njit
+
+#: Half-bandwidth of the Hessian in interleaved dofs (three-node stencils).
+BANDWIDTH = 5
 
 
-@dataclass(frozen=True)
-class Geometry:
-    r: np.ndarray      # (N,) node radii, dR units
-    z: np.ndarray      # (N,) node heights
-    vr: np.ndarray     # (N-1,) segment vectors
-    vz: np.ndarray
-    l: np.ndarray      # (N-1,) segment lengths
-
-    @property
-    def unit(self) -> np.ndarray:
-        """Unit segment vectors (N-1, 2)."""
-        return np.stack([self.vr / self.l, self.vz / self.l], axis=1)
-
-    def length_gradient(self) -> np.ndarray:
-        """d l / d(r_i, z_i, r_{i+1}, z_{i+1}) = (-u, u), shape (N-1, 4)."""
-        u = self.unit
-        return np.concatenate([-u, u], axis=1)
-
-    def length_projector(self) -> np.ndarray:
-        """P = (I - u u^T) / l (N-1, 2, 2): the Hessian of l is [[P, -P], [-P, P]]."""
-        u = self.unit
-        P = -u[:, :, None] * u[:, None, :]
-        P[:, 0, 0] += 1.0
-        P[:, 1, 1] += 1.0
-        return P / self.l[:, None, None]
+@njit(cache=True)
+def add_local(grad, hb, first, g, H, m, want_h):
+    """grad[first + p] += g[p]; H (m x m, symmetric) into the band at dofs first..first+m-1."""
+    for p in range(m):
+        grad[first + p] += g[p]
+    if want_h:
+        for p in range(m):
+            for q in range(p + 1):
+                hb[p - q, first + q] += H[p, q]
 
 
-def geometry(r: np.ndarray, z: np.ndarray) -> Geometry:
-    vr, vz = r[1:] - r[:-1], z[1:] - z[:-1]
-    return Geometry(r, z, vr, vz, np.hypot(vr, vz))
+@njit(cache=True)
+def add_segment(grad, hb, i, dEdl, d2Edl2, vr, vz, l, want_h):
+    """Scatter f(l) of segment i (nodes i, i+1): gradient dEdl (-u, u) and Hessian
+    [[K, -K], [-K, K]] with K = f'' u u^T + (f' / l) (I - u u^T)."""
+    ur, uz = vr / l, vz / l
+    a = 2 * i
+    grad[a] -= dEdl * ur
+    grad[a + 1] -= dEdl * uz
+    grad[a + 2] += dEdl * ur
+    grad[a + 3] += dEdl * uz
+    if want_h:
+        t = dEdl / l
+        krr = (d2Edl2 - t) * ur * ur + t
+        krz = (d2Edl2 - t) * ur * uz
+        kzz = (d2Edl2 - t) * uz * uz + t
+        # lower triangle of [[K, -K], [-K, K]] in local dofs (r_i, z_i, r_i+1, z_i+1)
+        hb[0, a] += krr
+        hb[1, a] += krz
+        hb[0, a + 1] += kzz
+        hb[2, a] -= krr
+        hb[3, a] -= krz
+        hb[1, a + 1] -= krz
+        hb[2, a + 1] -= kzz
+        hb[0, a + 2] += krr
+        hb[1, a + 2] += krz
+        hb[0, a + 3] += kzz
 
 
-def segment_hessian(a: np.ndarray, b: np.ndarray, geo: Geometry) -> np.ndarray:
-    """Local Hessian (n, 4, 4) of f(l) for every segment, from a = f''(l) and b = f'(l):
-    a (grad l)(grad l)^T + b Hess(l) = [[K, -K], [-K, K]] with K = a u u^T + b P."""
-    u = geo.unit
-    K = (a - b / geo.l)[:, None, None] * (u[:, :, None] * u[:, None, :])
-    K[:, 0, 0] += b / geo.l
-    K[:, 1, 1] += b / geo.l
-    H = np.empty((K.shape[0], 4, 4))
-    H[:, :2, :2] = K
-    H[:, 2:, 2:] = K
-    H[:, :2, 2:] = -K
-    H[:, 2:, :2] = -K
-    return H
+def no_hessian(n_nodes: int) -> np.ndarray:
+    """A placeholder band for gradient-only evaluations."""
+    return np.zeros((BANDWIDTH + 1, 0))

@@ -1,0 +1,42 @@
+"""The ``stitchswitch`` click group: version, verbosity, and the subcommands."""
+from __future__ import annotations
+
+import logging
+
+import click
+
+from stitchswitch import __version__
+from stitchswitch.cli import options
+from stitchswitch.cli.simulate import simulate
+
+
+class _EchoHandler(logging.Handler):
+    """Log records as ``Warning: message`` lines on click's (current) stderr."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        try:
+            click.echo(f"{record.levelname.capitalize()}: {self.format(record)}", err=True)
+        except Exception:  # pragma: no cover - logging must never raise
+            self.handleError(record)
+
+
+def configure_logging(verbosity: int) -> None:
+    """Map verbosity (count of -v minus count of -q) to the level of the ``stitchswitch``
+    logger: 0 warning (default), 1 info, 2+ debug, -1 error, -2 critical."""
+    logger = logging.getLogger("stitchswitch")
+    logger.setLevel(max(logging.DEBUG, logging.WARNING - 10 * verbosity))
+    if not any(isinstance(h, _EchoHandler) for h in logger.handlers):
+        logger.addHandler(_EchoHandler())
+
+
+@click.group(cls=options.Group)
+@click.version_option(__version__, "--version", prog_name="stitchswitch")
+@options.verbose_opt
+@options.quiet_opt
+def cli(verbose: int, quiet: int) -> None:
+    """Bistable embroidered textiles: simulate a circular embroidered patch with the reduced
+    model. Lengths are in mm; diameters are measured on the pre-stretched fabric."""
+    configure_logging(verbose - quiet)
+
+
+cli.add_command(simulate)
