@@ -16,7 +16,9 @@ x = (r_1..r_{N-1}, u_1..u_{N-2}) of ``constraints`` (u_j >= 0 are the segment dr
    the secant, which lets Newton follow the large rotations of the pop-up (3x fewer
    iterations than Cartesian updates in our tests). Angles stay in [-pi, 0] (z' <= 0: the
    projection onto the bounds) and the first segment stays horizontal (z'(0) = 0).
-4. Armijo backtracking on that curve. The energy is +inf outside its domain, so no node
+4. Armijo backtracking on that curve. When the predicted decrease is below the rounding
+   error of the energy (the last iterations), the full step is accepted if it lowers the
+   certificate instead. The energy is +inf outside its domain, so no node
    crosses the axis and no segment folds or collapses.
 
 5. A stationary point whose restricted Hessian is not positive definite is a saddle: the
@@ -38,6 +40,7 @@ from stitchswitch.reduced.discretization import Grid
 ARMIJO = 1e-4
 MAX_BACKTRACK = 60
 SHIFT_FLOOR = 1e-10      # smallest Hessian shift, relative to the mean diagonal
+ROUNDOFF = 1e-13         # relative size of energy changes that rounding cannot resolve
 MAX_ESCAPES = 5          # saddle escapes along negative curvature per solve
 
 
@@ -102,9 +105,10 @@ def _escape(model, r, z, E, ab, dof_map):
 
     A stationary point whose restricted Hessian is not positive definite is a saddle (for
     example the flat state of a design that buckles: its gradient vanishes by symmetry, so
-    Newton cannot leave it). The eigenvector of the smallest eigenvalue, oriented to lift the
-    pole (pop-up), is followed on the polar curve with the largest step, from half the patch
-    radius down, that lowers the energy. Returns the new state, or None."""
+    Newton cannot leave it). The eigenvector of the smallest eigenvalue is followed on the
+    polar curve with the largest step, from half the patch radius down, that lowers the
+    energy: first oriented to lift the pole (pop-up), then the other way (the sign bounds can
+    clip a direction into an ascent). Returns the new state, or None."""
     lam, v = banded.lowest_mode(ab)
     if lam >= 0:
         return None
@@ -113,13 +117,14 @@ def _escape(model, r, z, E, ab, dof_map):
     d /= np.max(np.abs(d))
     if d[1] < 0 or (d[1] == 0 and np.sum(d[1::2]) < 0):
         d = -d
-    curve = _Retraction(r, z, d[0::2], d[1::2])
-    alpha = 0.5 * model.grid.n_inside
-    while alpha > 1e-8:
-        trial = curve(alpha)
-        if trial is not None and model.energy(*trial) < E - 1e-12 * abs(E):
-            return trial
-        alpha *= 0.5
+    for sign in (1.0, -1.0):        # pop-up orientation first; the bounds may clip it away
+        curve = _Retraction(r, z, sign * d[0::2], sign * d[1::2])
+        alpha = 0.5 * model.grid.n_inside
+        while alpha > 1e-8:
+            trial = curve(alpha)
+            if trial is not None and model.energy(*trial) < E - 1e-12 * abs(E):
+                return trial
+            alpha *= 0.5
     return None
 
 
@@ -172,7 +177,16 @@ def minimize(grid: Grid, r0: np.ndarray, z0: np.ndarray, *, tol: float = 1e-10,
         d = np.where(valid, d_red[np.maximum(dof_map, 0)], 0.0)
         curve = _Retraction(r, z, d[0::2], d[1::2])
         alpha, accepted = 1.0, False
-        for _ in range(MAX_BACKTRACK):
+        if -float(g @ d) <= ROUNDOFF * abs(E):
+            # The predicted decrease is below the energy's rounding error, so the Armijo test
+            # cannot decide: accept the full step if it lowers the certificate instead.
+            trial = curve(1.0)
+            if trial is not None:
+                r_new, z_new = trial
+                _, g_new, _ = model.derivatives(r_new, z_new, hessian=False)
+                u_new = np.maximum(z_new[:-1] - z_new[1:], 0.0)
+                accepted = kkt_residual(g_new[0::2], g_new[1::2], u_new) < residual
+        for _ in range(0 if accepted else MAX_BACKTRACK):
             trial = curve(alpha)
             if trial is not None:
                 r_new, z_new = trial

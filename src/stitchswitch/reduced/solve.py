@@ -14,7 +14,7 @@ from stitchswitch.reduced.params import DEFAULT_MATERIAL, Material, Patch
 SOLVERS = ("newton", "adam")
 #: Certificate threshold: the solution is reported converged only if the max-norm of the
 #: projected gradient (dimensionless energy per dR) is at most this.
-DEFAULT_TOL = 1e-9
+DEFAULT_TOL = 1e-11
 
 
 @dataclass(frozen=True)
