@@ -11,7 +11,7 @@ import numpy as np
 
 from stitchswitch.reduced.discretization import Grid
 from stitchswitch.reduced.terms import ALL_TERMS
-from stitchswitch.reduced.terms.segment import BANDWIDTH
+from stitchswitch.reduced.terms.segment import BANDWIDTH, NO_HESSIAN
 
 
 def in_domain(r: np.ndarray, z: np.ndarray) -> bool:
@@ -40,7 +40,7 @@ class Model:
         """Energy, gradient (2N,) and banded Hessian (6, 2N) (None if ``hessian`` is False)."""
         n = 2 * self.grid.n_nodes
         grad = np.zeros(n)
-        hb = np.zeros((BANDWIDTH + 1, n if hessian else 0))
+        hb = np.zeros((BANDWIDTH + 1, n)) if hessian else NO_HESSIAN
         total = 0.0
         for term, coef in zip(self.terms, self._coefs):
             total += term.accumulate(r, z, coef, grad, hb)

@@ -20,6 +20,8 @@ DIAMETER_RANGE_MM = (10.0, 150.0)
 
 
 def _finite(name: str, value: float) -> float:
+    if isinstance(value, bool):
+        raise InvalidInputError(f"{name}: {value!r} is not a number")
     try:
         v = float(value)
     except (TypeError, ValueError):

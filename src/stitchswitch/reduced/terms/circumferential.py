@@ -13,6 +13,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from stitchswitch.reduced.terms.segment import NO_HESSIAN
+
 STENCIL = 1
 OFFSET = 1
 
@@ -42,7 +44,7 @@ def _kernel(r, rest, w, grad, hb, want_g, want_h):
 
 
 def energy(r, z, coef) -> float:
-    return _kernel(r, *coef, r, r[:0, None], False, False)
+    return _kernel(r, *coef, np.empty(0), NO_HESSIAN, False, False)
 
 
 def accumulate(r, z, coef, grad, hb) -> float:

@@ -20,7 +20,7 @@ import math
 import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.terms.segment import add_segment
+from stitchswitch.reduced.terms.segment import NO_HESSIAN, add_segment
 
 STENCIL = 2
 OFFSET = 0
@@ -51,7 +51,7 @@ def _kernel(r, z, lam, w, grad, hb, want_g, want_h):
 
 
 def energy(r, z, coef) -> float:
-    return _kernel(r, z, *coef, r, r[:0, None], False, False)
+    return _kernel(r, z, *coef, np.empty(0), NO_HESSIAN, False, False)
 
 
 def accumulate(r, z, coef, grad, hb) -> float:

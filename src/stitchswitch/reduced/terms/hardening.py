@@ -21,6 +21,8 @@ import math
 import numpy as np
 from numba import njit
 
+from stitchswitch.reduced.terms.segment import NO_HESSIAN
+
 STENCIL = 1
 OFFSET = 1
 
@@ -67,7 +69,7 @@ def coefficients(grid):
 
 
 def energy(r, z, coef) -> float:
-    return _kernel(r, *coef, r, r[:0, None], False, False)
+    return _kernel(r, *coef, np.empty(0), NO_HESSIAN, False, False)
 
 
 def accumulate(r, z, coef, grad, hb) -> float:

@@ -50,6 +50,6 @@ def add_segment(grad, hb, i, dEdl, d2Edl2, vr, vz, l, want_h):
         hb[0, a + 3] += kzz
 
 
-def no_hessian(n_nodes: int) -> np.ndarray:
-    """A placeholder band for gradient-only evaluations."""
-    return np.zeros((BANDWIDTH + 1, 0))
+#: Placeholder band for evaluations without a Hessian (same array type as a real band, so the
+#: kernels are compiled once).
+NO_HESSIAN = np.zeros((BANDWIDTH + 1, 0))
