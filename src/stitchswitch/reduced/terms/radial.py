@@ -8,12 +8,10 @@ is what keeps it from collapsing.
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.terms.segment import NO_HESSIAN, add_segment
+from stitchswitch.reduced.terms.segment import NO_HESSIAN, add_segment, segment
 
 STENCIL = 2
 OFFSET = 0
@@ -28,8 +26,7 @@ def coefficients(grid):
 def _kernel(r, z, lam, w, grad, hb, want_g, want_h):
     E = 0.0
     for i in range(r.size - 1):
-        vr, vz = r[i + 1] - r[i], z[i + 1] - z[i]
-        l = math.sqrt(vr * vr + vz * vz)
+        vr, vz, l = segment(r, z, i)
         s = l - lam[i]
         if s <= 0.0:
             continue

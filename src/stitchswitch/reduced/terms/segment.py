@@ -4,11 +4,20 @@ is kept in LAPACK lower band storage ``hb[k, j] = H[j + k, j]`` with k = 0..5 (e
 couples at most three consecutive nodes)."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
 #: Half-bandwidth of the Hessian in interleaved dofs (three-node stencils).
 BANDWIDTH = 5
+
+
+@njit(cache=True)
+def segment(r, z, i):
+    """Vector (vr, vz) and length of segment i (nodes i, i+1)."""
+    vr, vz = r[i + 1] - r[i], z[i + 1] - z[i]
+    return vr, vz, math.sqrt(vr * vr + vz * vz)
 
 
 @njit(cache=True)
