@@ -8,7 +8,7 @@ from stitchswitch.reduced.params import DEFAULT_MATERIAL, Patch
 @pytest.fixture
 def small_grid():
     """A 40-node grid (N_in = 12) with every term active: hardening strong enough to matter."""
-    material = DEFAULT_MATERIAL.replace(n_nodes=40, w_log=0.5, gamma_dr=2.0)
+    material = DEFAULT_MATERIAL.replace(n_nodes=40, w_log=0.5, gamma_mm=1.0)
     return make_grid(Patch(20.0, 0.8), material)
 
 

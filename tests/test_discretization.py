@@ -197,11 +197,12 @@ def test_bending_weight_per_hinge(d, fill):
 
 
 def test_scalar_coefficients_are_passed_through():
-    m = DISTINCT.replace(w_log=0.37, gamma_dr=4.5, compression_ratio=0.03)
+    m = DISTINCT.replace(w_log=0.37, gamma_mm=4.5, compression_ratio=0.03)
     grid = make_grid(Patch(30.0, 0.5), m)
     assert grid.w_log == 0.37
-    assert grid.gamma == 4.5
+    assert grid.gamma == pytest.approx(4.5 / grid.dr_mm, rel=1e-15)
     assert grid.compression == 0.03
+    assert grid.bending_scale == pytest.approx((m.dr_max_mm / grid.dr_mm) ** 2, rel=1e-15)
 
 
 # ---------------------------------------------------------------------------- read-only

@@ -9,7 +9,7 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.params import DEFAULT_MATERIAL, DIAMETER_RANGE_MM, Material, Patch
 
 STIFFNESSES = ("w_b_emb", "w_b_fab", "k_r_emb", "k_r_fab", "k_theta_emb", "k_theta_fab")
-FLOAT_FIELDS = STIFFNESSES + ("w_log", "gamma_dr", "eta", "dr_max_mm", "compression_ratio")
+FLOAT_FIELDS = STIFFNESSES + ("w_log", "gamma_mm", "eta", "dr_max_mm", "compression_ratio")
 
 
 def value_spellings(value):
@@ -145,8 +145,8 @@ def test_material_zero_w_log_accepted():
 @pytest.mark.parametrize("value", [0, 0.0, -1.0])
 def test_material_non_positive_gamma(value):
     with pytest.raises(InvalidInputError) as info:
-        material(gamma_dr=value)
-    assert_names(info, "gamma_dr", value)
+        material(gamma_mm=value)
+    assert_names(info, "gamma_mm", value)
 
 
 @pytest.mark.parametrize("value", [0.0, -1.7, 0.5, 1.0, 3.0000001, 3.5, 10.0])
@@ -208,7 +208,7 @@ def test_material_n_nodes_accepted(value):
 
 
 def test_material_float_fields_are_floats():
-    m = material(w_b_emb=3, eta=2, gamma_dr=5, dr_max_mm=1)
+    m = material(w_b_emb=3, eta=2, gamma_mm=5, dr_max_mm=1)
     for name in FLOAT_FIELDS:
         assert type(getattr(m, name)) is float, name
 
@@ -238,7 +238,7 @@ def test_replace_without_changes_is_equal():
 
 @pytest.mark.parametrize("field, value", [
     ("eta", 0.5), ("eta", 3.5), ("k_r_emb", 0.0), ("w_b_fab", -1.0), ("w_log", -0.1),
-    ("gamma_dr", 0.0), ("compression_ratio", 1.0), ("n_nodes", 19), ("n_nodes", True),
+    ("gamma_mm", 0.0), ("compression_ratio", 1.0), ("n_nodes", 19), ("n_nodes", True),
     ("n_nodes", 300.5), ("dr_max_mm", 0.0), ("k_theta_fab", float("nan")),
 ])
 def test_replace_validates(field, value):

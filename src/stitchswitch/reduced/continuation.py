@@ -27,7 +27,7 @@ INITIAL_STEP = 0.25
 MIN_STEP = 1.0 / 256
 STAGE_TOL = 1e-6
 STAGE_MAX_ITER = 60
-SEED_FRACTION = 0.05     # seed bump height / N_in (dR units)
+SEED_FRACTION = 0.2      # seed bump height / N_in (dR units)
 
 
 def seed_bump(grid: Grid) -> np.ndarray:

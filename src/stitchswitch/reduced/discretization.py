@@ -14,6 +14,14 @@ The per-segment rest metric lambda and stiffnesses k follow the paper, weighted 
 
 The bending hinge i sits at node i+1, between segments i and i+1 (i = 0..N-3), and uses the
 weight of segment i, so the hinge on the boundary node N_in is inside.
+
+Units. In dR units the membrane terms are the physical membrane energy divided by dR^2, but
+the bending term (tan^2 of an angle times a length ratio) is the same in any unit. Left alone,
+the ratio of bending to membrane stiffness would scale with dR^2, i.e. change with d through the
+adaptive spacing, and every design with the same N_in would have the same shape in dR units:
+h(d) becomes a staircase with a jump at every change of N_in (6 % at d = 25 mm). The bending
+weights are therefore those at the spacing dR_max and are scaled by ``bending_scale =
+(dR_max / dR)^2``; likewise the hardening limit is a length, ``gamma = gamma_mm / dR``.
 """
 from __future__ import annotations
 
@@ -36,10 +44,11 @@ class Grid:
     lam: np.ndarray        # (N-1,) rest metric of each segment
     k_r: np.ndarray        # (N-1,) radial stiffness
     k_theta: np.ndarray    # (N-1,) circumferential stiffness
-    w_b: np.ndarray        # (N-2,) bending weight of hinge i (node i+1)
+    w_b: np.ndarray        # (N-2,) bending weight of hinge i (node i+1), material value
     w_log: float
     gamma: float           # hardening limit, dR units
-    compression: float    # slack regularization ratio
+    compression: float     # slack regularization ratio
+    bending_scale: float   # (dR_max / dR)^2: makes the bending length independent of dR
 
     @property
     def R(self) -> np.ndarray:
@@ -57,7 +66,7 @@ class Grid:
         lam = 1.0 + t * (self.lam - 1.0)
         lam.setflags(write=False)
         return Grid(self.n_nodes, self.n_inside, self.dr_mm, lam, self.k_r, self.k_theta,
-                    self.w_b, self.w_log, self.gamma, self.compression)
+                    self.w_b, self.w_log, self.gamma, self.compression, self.bending_scale)
 
 
 def _ro(a: np.ndarray) -> np.ndarray:
@@ -98,6 +107,7 @@ def make_grid(patch: Patch, material: Material) -> Grid:
         k_theta=_ro(piecewise(material.k_theta_emb, material.k_theta_fab)),
         w_b=_ro(piecewise(material.w_b_emb, material.w_b_fab)[:-1]),
         w_log=material.w_log,
-        gamma=material.gamma_dr,
+        gamma=material.gamma_mm / dr_mm,
         compression=material.compression_ratio,
+        bending_scale=(material.dr_max_mm / dr_mm) ** 2,
     )

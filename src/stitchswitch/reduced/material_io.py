@@ -1,6 +1,6 @@
 """Material files: one JSON object whose keys are the fields of ``Material``.
 
-Fields with a default in ``Material`` (``gamma_dr``, ``eta``, ``n_nodes``, ``dr_max_mm``,
+Fields with a default in ``Material`` (``gamma_mm``, ``eta``, ``n_nodes``, ``dr_max_mm``,
 ``compression_ratio``) may be left out; the seven calibrated coefficients are required. Every
 problem with a file (unreadable, not JSON, not an object, a duplicate, unknown or missing field,
 a value that is not a number or that ``Material`` rejects) raises ``InvalidInputError`` with a

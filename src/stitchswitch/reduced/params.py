@@ -3,8 +3,9 @@
 ``Material`` holds the seven calibrated coefficients of the paper (Eqs. 3-5), the hardening
 limit, the discretization constants and the slack regularization. The coefficients are
 dimensionless: the energy is written with lengths in units of the node spacing dR (see
-``docs/model.md``), so ``gamma_dr`` (the hardening limit of the circumferential strain of
-Eq. 2) is in units of dR too.
+``docs/model.md``); the bending weights are those at the spacing ``dr_max_mm`` and the
+hardening limit ``gamma_mm`` is a length, both converted to the design's spacing by
+``discretization.make_grid``.
 
 ``Patch`` is one design: its diameter on the pre-stretched fabric (mm) and its fill fraction.
 """
@@ -62,7 +63,7 @@ class Material:
     ``k_theta_emb, k_theta_fab`` circumferential membrane stiffnesses (Eq. 3), ``w_log`` the
     weight of the hardening term (Eq. 5, with the sign corrected, see ``terms/hardening.py``).
 
-    ``gamma_dr``: limit of the circumferential strain (Eq. 2) in units of dR, where the fabric
+    ``gamma_mm``: limit of the circumferential strain (Eq. 2, a length), where the fabric
     hardens. ``eta``: pre-stretch in the hoop. ``n_nodes``: N. ``dr_max_mm``: largest node
     spacing. ``compression_ratio``: the slack regularization (``terms/compression.py``), the
     ratio of compressive to tensile radial stiffness near the rest length; 0 is the printed
@@ -76,7 +77,7 @@ class Material:
     k_theta_emb: float
     k_theta_fab: float
     w_log: float
-    gamma_dr: float = 6.0
+    gamma_mm: float = 3.0
     eta: float = 1.7
     n_nodes: int = 300
     dr_max_mm: float = 0.5
@@ -92,8 +93,8 @@ class Material:
                 raise InvalidInputError(f"{name}: {getattr(self, name)!r} must be > 0")
         if self.w_log < 0:
             raise InvalidInputError(f"w_log: {self.w_log!r} must be >= 0")
-        if self.gamma_dr <= 0:
-            raise InvalidInputError(f"gamma_dr: {self.gamma_dr!r} must be > 0")
+        if self.gamma_mm <= 0:
+            raise InvalidInputError(f"gamma_mm: {self.gamma_mm!r} must be > 0")
         if not 1.0 < self.eta <= 3.0:
             raise InvalidInputError(f"eta: {self.eta!r} is outside (1, 3]")
         if self.dr_max_mm <= 0:

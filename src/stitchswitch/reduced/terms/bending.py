@@ -37,8 +37,9 @@ HESS_DOT = _EA.T @ _EB + _EB.T @ _EA                 # a.b is bilinear
 
 
 def coefficients(grid):
-    """(bending weight w_b / N per hinge, the constant Hessians of X and a.b)."""
-    return grid.w_b / grid.n_nodes, HESS_X, HESS_DOT
+    """(bending weight per hinge, the constant Hessians of X and a.b). The weight is
+    w_b bending_scale / N: see ``discretization`` for why bending is scaled with (dR_max/dR)^2."""
+    return grid.w_b * grid.bending_scale / grid.n_nodes, HESS_X, HESS_DOT
 
 
 @njit(cache=True)

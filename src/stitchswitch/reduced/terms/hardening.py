@@ -6,7 +6,7 @@ concave and rewards stretching. The hardening the paper describes is its negativ
     h(e) = (g - e) log(1 - e/g) + e,   h(0) = h'(0) = 0,   h'(e) = -log(1 - e/g),
     h''(e) = 1 / (g - e) > 0,           h(e) ~ e^2 / (2 g) for small e,
 
-applied to the circumferential strain e = eps_theta of Eq. 2 (dR units, like g = gamma_dr):
+applied to the circumferential strain e = eps_theta of Eq. 2 (dR units, like g = gamma_mm / dR):
 
     E_log = (w_log / N) sum_i h(eps_i).
 
