@@ -202,7 +202,7 @@ def test_scalar_coefficients_are_passed_through():
     assert grid.w_log == 0.37
     assert grid.gamma == pytest.approx(4.5 / grid.dr_mm, rel=1e-15)
     assert grid.compression == 0.03
-    assert grid.bending_scale == pytest.approx((m.dr_max_mm / grid.dr_mm) ** 2, rel=1e-15)
+    assert grid.bending_scale == pytest.approx((0.5 / grid.dr_mm) ** 2, rel=1e-15)
 
 
 # ---------------------------------------------------------------------------- read-only

@@ -7,6 +7,7 @@ import click
 
 from stitchswitch import __version__
 from stitchswitch.cli import options
+from stitchswitch.cli.precompute import precompute
 from stitchswitch.cli.simulate import simulate
 
 
@@ -40,3 +41,4 @@ def cli(verbose: int, quiet: int) -> None:
 
 
 cli.add_command(simulate)
+cli.add_command(precompute)

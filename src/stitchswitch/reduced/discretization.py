@@ -20,8 +20,10 @@ the bending term (tan^2 of an angle times a length ratio) is the same in any uni
 the ratio of bending to membrane stiffness would scale with dR^2, i.e. change with d through the
 adaptive spacing, and every design with the same N_in would have the same shape in dR units:
 h(d) becomes a staircase with a jump at every change of N_in (6 % at d = 25 mm). The bending
-weights are therefore those at the spacing dR_max and are scaled by ``bending_scale =
-(dR_max / dR)^2``; likewise the hardening limit is a length, ``gamma = gamma_mm / dR``.
+weights are therefore those at the reference spacing ``BENDING_REFERENCE_MM`` (the paper's
+0.5 mm) and are scaled by ``bending_scale = (0.5 mm / dR)^2``; likewise the hardening limit is a
+length, ``gamma = gamma_mm / dR``. Then the discrete energy is (1/dR^2) times one
+dR-independent functional, and refining the grid converges to its minimizer.
 """
 from __future__ import annotations
 
@@ -69,6 +71,11 @@ class Grid:
                     self.w_b, self.w_log, self.gamma, self.compression, self.bending_scale)
 
 
+#: Node spacing at which the bending weights are defined: the paper's dR_max. A constant, so
+#: that refining the grid (a smaller ``dr_max_mm``) changes the resolution, not the material.
+BENDING_REFERENCE_MM = 0.5
+
+
 def _ro(a: np.ndarray) -> np.ndarray:
     a = np.ascontiguousarray(a, dtype=float)
     a.setflags(write=False)
@@ -80,6 +87,12 @@ def n_inside(patch: Patch, material: Material) -> int:
     ratio = patch.diameter_mm / (2.0 * material.eta) / material.dr_max_mm
     n = math.ceil(ratio - 1e-12)
     return max(n, 1)
+
+
+def n_inside_array(diameters_mm: np.ndarray, material: Material) -> np.ndarray:
+    """``n_inside`` for an array of diameters (same rule, vectorized)."""
+    ratio = np.asarray(diameters_mm, dtype=float) / (2.0 * material.eta) / material.dr_max_mm
+    return np.maximum(np.ceil(ratio - 1e-12), 1).astype(int)
 
 
 def make_grid(patch: Patch, material: Material) -> Grid:
@@ -109,5 +122,5 @@ def make_grid(patch: Patch, material: Material) -> Grid:
         w_log=material.w_log,
         gamma=material.gamma_mm / dr_mm,
         compression=material.compression_ratio,
-        bending_scale=(material.dr_max_mm / dr_mm) ** 2,
+        bending_scale=(BENDING_REFERENCE_MM / dr_mm) ** 2,
     )

@@ -24,7 +24,7 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.params import Material
 
 __all__ = ["load_material", "save_material", "material_hash", "canonical_json",
-           "default_material_path"]
+           "default_material_path", "material_from_json"]
 
 _FIELDS = {f.name: f for f in fields(Material)}
 _REQUIRED = [name for name, f in _FIELDS.items()
@@ -76,6 +76,11 @@ def load_material(path: str | os.PathLike) -> Material:
         raise InvalidInputError(f"{where}: cannot be read ({exc.strerror or exc})") from None
     except UnicodeDecodeError as exc:
         raise InvalidInputError(f"{where}: is not UTF-8 text ({exc.reason} at byte {exc.start})") from None
+    return material_from_json(text, where)
+
+
+def material_from_json(text: str, where: str = "material") -> Material:
+    """Parse and validate the JSON text of a material; errors start with ``where``."""
     try:
         data = json.loads(text, object_pairs_hook=_no_duplicates)
     except json.JSONDecodeError as exc:

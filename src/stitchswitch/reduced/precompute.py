@@ -1,0 +1,90 @@
+"""Build the design-space map: one certified solve per grid design, rows in parallel.
+
+Every grid point is the result of ``solve(Patch(d, p), material)``, the same deterministic
+solve a direct call makes, so the map agrees with direct solves by construction. Neighbours on
+the grid are used by ``map_check`` to explain any point that is not smooth (a branch change or
+the buckling onset), by warm-starting one design from its neighbour's profile.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.executor import run_all
+from stitchswitch.reduced.design_map import FLAG_SMOOTH, KEYPOINTS, DesignMap
+from stitchswitch.reduced.params import DEFAULT_MATERIAL, Material, Patch
+
+#: The default grid (issue 3 / paper Fig. 4 range): 86 diameters x 51 fills.
+DEFAULT_DIAMETERS_MM = np.arange(15.0, 100.0 + 0.5, 1.0)
+DEFAULT_FILLS = np.round(np.arange(0.50, 1.0 + 0.005, 0.01), 2)
+
+
+def parse_range(text: str, name: str) -> np.ndarray:
+    """'START:STOP:STEP' (inclusive of STOP when it falls on the grid) or one number."""
+    parts = text.split(":")
+    try:
+        values = [float(x) for x in parts]
+    except ValueError:
+        raise InvalidInputError(f"{name}: {text!r} is not START:STOP:STEP") from None
+    if len(values) == 1:
+        return np.array(values)
+    if len(values) != 3 or not np.all(np.isfinite(values)):
+        raise InvalidInputError(f"{name}: {text!r} is not START:STOP:STEP")
+    start, stop, step = values
+    if step <= 0 or stop < start:
+        raise InvalidInputError(f"{name}: {text!r} needs STEP > 0 and STOP >= START")
+    n = int(np.floor((stop - start) / step + 1e-9)) + 1
+    return np.round(start + step * np.arange(n), 10)
+
+
+def _solve_row(args):
+    from stitchswitch.reduced.solve import solve
+
+    d, fills, material = args
+    rows = {name: [] for name in KEYPOINTS + ("energy", "residual", "converged", "u", "z")}
+    sol = None
+    for p in fills:
+        sol = solve(Patch(d, p), material)
+        kp = sol.keypoints
+        for name in KEYPOINTS:
+            rows[name].append(getattr(kp, name))
+        rows["energy"].append(sol.energy)
+        rows["residual"].append(sol.residual)
+        rows["converged"].append(sol.converged and bool(sol.second_order))
+        rows["u"].append((sol.r_mm - sol.R_mm).astype(np.float32))
+        rows["z"].append(sol.z_mm.astype(np.float32))
+    return rows, sol.dr_mm, sol.n_inside
+
+
+def build(material: Material = DEFAULT_MATERIAL, diameters_mm=DEFAULT_DIAMETERS_MM,
+          fills=DEFAULT_FILLS, workers: int = 1, progress=None, check: bool = True) -> DesignMap:
+    """Solve every grid design; ``progress(rows_done)`` is called once per diameter.
+
+    With ``check`` the smoothness test runs and unsmooth points are explained and flagged
+    (``map_check.classify``)."""
+    from stitchswitch.reduced.material_io import material_hash
+
+    d = np.asarray(diameters_mm, dtype=float)
+    p = np.asarray(fills, dtype=float)
+    for name, grid in (("diameters", d), ("fills", p)):
+        if grid.ndim != 1 or grid.size < 2 or np.any(np.diff(grid) <= 0):
+            raise InvalidInputError(f"{name}: need at least two increasing values, got {grid.tolist()}")
+    for dd in d:                       # validate every design before any work
+        for pp in (p[0], p[-1]):
+            Patch(dd, pp)
+    rows = run_all(_solve_row, [(float(x), p.tolist(), material) for x in d], workers, progress)
+    table = {k: np.array([r[0][k] for r in rows]) for k in rows[0][0]}
+    dmap = DesignMap(
+        diameter_mm=d, fill=p,
+        **{k: table[k].astype(float) for k in KEYPOINTS},
+        energy=table["energy"].astype(float), residual=table["residual"].astype(float),
+        converged=table["converged"].astype(bool),
+        u_mm=table["u"].astype(np.float32), z_prof_mm=table["z"].astype(np.float32),
+        dr_mm=np.array([r[1] for r in rows]), n_inside=np.array([r[2] for r in rows]),
+        material=material, material_hash=material_hash(material),
+        flags=np.full((d.size, p.size), FLAG_SMOOTH, dtype=np.int8),
+    )
+    if check:
+        from stitchswitch.reduced.map_check import classify
+        dmap = classify(dmap)
+    return dmap

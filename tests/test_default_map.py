@@ -1,0 +1,56 @@
+"""The shipped default map matches the current model and is smooth (or explains why not)."""
+import numpy as np
+import pytest
+
+from stitchswitch import DEFAULT_MATERIAL, Patch, solve
+from stitchswitch.reduced import map_check
+from stitchswitch.reduced.design_map import FLAG_SMOOTH, FLAG_UNEXPLAINED
+from stitchswitch.reduced.map_cache import default_map, map_for
+from stitchswitch.reduced.material_io import material_hash
+from stitchswitch.reduced.precompute import DEFAULT_DIAMETERS_MM, DEFAULT_FILLS
+
+
+@pytest.fixture(scope="module")
+def dmap():
+    return default_map()
+
+
+def test_default_map_is_for_the_default_material_and_grid(dmap):
+    assert dmap.material == DEFAULT_MATERIAL
+    assert dmap.material_hash == material_hash(DEFAULT_MATERIAL)
+    assert np.array_equal(dmap.diameter_mm, DEFAULT_DIAMETERS_MM)
+    assert np.array_equal(dmap.fill, DEFAULT_FILLS)
+    assert dmap.shape == (86, 51)
+    assert dmap.converged.all() and dmap.residual.max() <= 1e-11
+    assert map_for(DEFAULT_MATERIAL) is dmap
+
+
+@pytest.mark.parametrize("i, j", [(0, 0), (10, 25), (40, 7), (85, 50), (60, 33)])
+def test_default_map_matches_the_current_model(dmap, i, j):
+    sol = solve(Patch(dmap.diameter_mm[i], dmap.fill[j]))
+    assert dmap.h_mm[i, j] == pytest.approx(sol.keypoints.h_mm, abs=1e-9)
+    assert dmap.r_b_mm[i, j] == pytest.approx(sol.keypoints.r_b_mm, abs=1e-9)
+
+
+def test_every_unsmooth_point_is_flagged_and_explained(dmap):
+    bad = map_check.violations(dmap.h_mm)
+    assert np.array_equal(bad, dmap.flags != FLAG_SMOOTH)
+    assert not np.any(dmap.flags == FLAG_UNEXPLAINED)
+    d = dmap.diameter_mm[np.nonzero(bad)[0]]
+    assert d.size == 0 or d.max() <= 20.0          # only the small-patch corner near the onset
+
+
+def test_query_accuracy_against_direct_solves(dmap):
+    """Random off-grid designs whose cell has no flagged corner: h within 1 % or 0.05 mm."""
+    rng = np.random.default_rng(11)
+    checked = 0
+    while checked < 25:
+        d, p = rng.uniform(15.0, 100.0), rng.uniform(0.5, 1.0)
+        i = min(np.searchsorted(dmap.diameter_mm, d) - 1, 84)
+        j = min(np.searchsorted(dmap.fill, p) - 1, 49)
+        if np.any(dmap.flags[i:i + 2, j:j + 2] != FLAG_SMOOTH):
+            continue
+        q = dmap.query(d, p)
+        kp = solve(Patch(d, p)).keypoints
+        assert abs(q.h_mm[0] - kp.h_mm) <= max(0.01 * kp.h_mm, 0.05), (d, p)
+        checked += 1
