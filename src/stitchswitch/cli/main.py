@@ -7,6 +7,8 @@ import click
 
 from stitchswitch import __version__
 from stitchswitch.cli import options
+from stitchswitch.cli.force import force
+from stitchswitch.cli.inverse import inverse
 from stitchswitch.cli.precompute import precompute
 from stitchswitch.cli.simulate import simulate
 
@@ -42,3 +44,5 @@ def cli(verbose: int, quiet: int) -> None:
 
 cli.add_command(simulate)
 cli.add_command(precompute)
+cli.add_command(inverse)
+cli.add_command(force)
