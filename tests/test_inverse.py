@@ -71,3 +71,10 @@ def test_selection_program_picks_the_cheapest_per_bin():
     assert list(s.indices) == [1, 3]             # the last bin has no design in the window
     s = select(cost, d, p, force, count=2, bin_width_mm=5.0, bin_origin_mm=10.0, d_max=15.0)
     assert list(s.indices) == [1]
+
+
+def test_force_extrapolation_is_flagged():
+    result = inverse_design(InverseTarget(17.5, count=5))
+    for c in result.candidates:
+        outside = not (20.0 <= c.d_mm <= 90.0 and 0.6 <= c.fill <= 1.0)
+        assert c.force_extrapolated is outside

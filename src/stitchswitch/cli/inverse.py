@@ -53,3 +53,11 @@ def inverse(height_mm, radius_mm, max_diameter_mm, min_fill, force_range, count,
                    f"{c['z_a_mm']:7.2f} {c['r_b_mm']:7.2f} {c['z_b_mm']:7.2f} {c['force_N']:8.3f}")
     click.echo(f"every row is a certified direct solve; selection: HiGHS {result.selection.status} "
                f"in {result.selection.solve_s:.2f} s")
+    if any(c["force_extrapolated"] for c in cands):
+        from stitchswitch.reduced.force_model import default_force_fit
+
+        fit = default_force_fit()
+        (d0, d1), (p0, p1) = fit.d_range_mm, fit.fill_range
+        click.echo(f"force_N: the polynomial model of {fit.source.split('(')[0].strip() or 'the data'} "
+                   f"data; rows outside its design range (d {d0:g}-{d1:g} mm, fill {p0:g}-{p1:g}) "
+                   "are extrapolated")

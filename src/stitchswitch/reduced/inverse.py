@@ -70,6 +70,7 @@ class Candidate:
     r_b_mm: float
     z_b_mm: float
     force_N: float
+    force_extrapolated: bool | None       # outside the force data's design range (None: unknown)
     height_error_mm: float
     radius_error_mm: float | None
     residual: float
@@ -79,10 +80,12 @@ class Candidate:
         return dict(self.__dict__)
 
 
-def _force_predictor():
+def _default_force():
+    """The default force model's predictor, and its extrapolation test."""
     from stitchswitch.reduced.force_model import default_force_fit
 
-    return default_force_fit().model.predict
+    fit = default_force_fit()
+    return fit.model.predict, fit.extrapolates
 
 
 def _bounds_text(target: InverseTarget, dmap: DesignMap) -> str:
@@ -109,7 +112,9 @@ def inverse_design(target: InverseTarget, dmap: DesignMap | None = None,
     from stitchswitch.reduced.map_cache import default_map
 
     dmap = dmap or default_map()
-    force = force or _force_predictor()
+    extrapolates = None
+    if force is None:
+        force, extrapolates = _default_force()
     D, P = np.meshgrid(dmap.diameter_mm, dmap.fill, indexing="ij")
     d, p = D.ravel(), P.ravel()
     F = np.asarray(force(d, p), dtype=float)
@@ -143,7 +148,7 @@ def inverse_design(target: InverseTarget, dmap: DesignMap | None = None,
     out = []
     for k in picks:
         dd, pp = _refine(dmap, target, d[k], p[k], d_max, p_min)
-        cand = _confirm(dmap, target, dd, pp, force, p_min)
+        cand = _confirm(dmap, target, dd, pp, force, p_min, extrapolates)
         if cand.force_N < f_lo - 1e-12 or cand.force_N > f_hi + 1e-12:
             continue
         if abs(cand.height_error_mm) > HEIGHT_TOL_MM or not cand.converged:
@@ -178,7 +183,7 @@ def _refine(dmap, target, d0, p0, d_max, p_min):
     return float(d0), float(p0)
 
 
-def _confirm(dmap, target, d, p, force, p_min) -> Candidate:
+def _confirm(dmap, target, d, p, force, p_min, extrapolates=None) -> Candidate:
     from stitchswitch.reduced.solve import solve
 
     material = dmap.material
@@ -195,6 +200,7 @@ def _confirm(dmap, target, d, p, force, p_min) -> Candidate:
     return Candidate(
         d_mm=float(d), fill=float(p), **{name: float(getattr(kp, name)) for name in KEYPOINTS},
         force_N=float(np.asarray(force(np.array([d]), np.array([p])))[0]),
+        force_extrapolated=None if extrapolates is None else bool(extrapolates(d, p)),
         height_error_mm=float(kp.h_mm - target.height_mm),
         radius_error_mm=None if target.radius_mm is None else float(kp.r_a_mm - target.radius_mm),
         residual=float(sol.residual), converged=bool(sol.converged))
