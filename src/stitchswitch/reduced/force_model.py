@@ -36,6 +36,7 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.params import DIAMETER_RANGE_MM
+from stitchswitch.textio import read_text
 
 __all__ = ["ForceModel", "ForceFit", "ForceSample", "fit_force_model", "load_force_csv",
            "parse_force_csv", "default_force_fit", "default_force_csv_path", "FEATURES"]
@@ -207,14 +208,7 @@ def parse_force_csv(text: str, name: str = "<text>") -> tuple[list[ForceSample],
 def load_force_csv(path: str | os.PathLike) -> tuple[list[ForceSample], str]:
     """Read and validate a force table file: ``(rows, provenance)``."""
     name = repr(os.fspath(path))
-    try:
-        with open(path, "rb") as f:
-            text = f.read().decode("utf-8-sig")
-    except OSError as exc:
-        raise InvalidInputError(f"force data {name}: cannot be read ({exc.strerror or exc})") from None
-    except UnicodeDecodeError as exc:
-        raise InvalidInputError(f"force data {name}: is not UTF-8 text ({exc.reason})") from None
-    return parse_force_csv(text, name)
+    return parse_force_csv(read_text(path, f"force data {name}"), name)
 
 
 def default_force_csv_path():

@@ -22,6 +22,7 @@ from importlib import resources
 from stitchswitch.atomic import atomic_write_text
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.params import Material
+from stitchswitch.textio import read_text
 
 __all__ = ["load_material", "save_material", "material_hash", "canonical_json",
            "default_material_path", "material_from_json"]
@@ -69,14 +70,7 @@ def _no_duplicates(pairs: list[tuple[str, object]]) -> dict:
 def load_material(path: str | os.PathLike) -> Material:
     """Read and validate a material file; see the module docstring for the format."""
     where = f"material file {os.fspath(path)!r}"
-    try:
-        with open(path, "rb") as f:
-            text = f.read().decode("utf-8")
-    except OSError as exc:
-        raise InvalidInputError(f"{where}: cannot be read ({exc.strerror or exc})") from None
-    except UnicodeDecodeError as exc:
-        raise InvalidInputError(f"{where}: is not UTF-8 text ({exc.reason} at byte {exc.start})") from None
-    return material_from_json(text, where)
+    return material_from_json(read_text(path, where, encoding="utf-8"), where)
 
 
 def material_from_json(text: str, where: str = "material") -> Material:
