@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import json
 import pathlib
+import sys
 import time
 
 import click
@@ -39,7 +40,7 @@ def precompute(material_path, diameters, fills, workers, out, plot, as_json):
     workers = workers or default_workers()
     t0 = time.perf_counter()
     with click.progressbar(length=d.size, label=f"solving {d.size} x {p.size} designs",
-                           file=click.get_text_stream("stderr")) as bar:
+                           file=sys.stderr) as bar:
         last = [0]
 
         def progress(done):
