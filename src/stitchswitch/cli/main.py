@@ -7,10 +7,12 @@ import click
 
 from stitchswitch import __version__
 from stitchswitch.cli import options
+from stitchswitch.cli.calibrate import calibrate
 from stitchswitch.cli.force import force
 from stitchswitch.cli.inverse import inverse
 from stitchswitch.cli.precompute import precompute
 from stitchswitch.cli.simulate import simulate
+from stitchswitch.cli.validate import validate
 
 
 class _EchoHandler(logging.Handler):
@@ -46,3 +48,5 @@ cli.add_command(simulate)
 cli.add_command(precompute)
 cli.add_command(inverse)
 cli.add_command(force)
+cli.add_command(validate)
+cli.add_command(calibrate)

@@ -1,1 +1,2 @@
-"""Measured data, validation reports, discrepancy discovery. Not implemented yet: see issues 4 and 6."""
+"""Measured data (``measured``), validation metrics (``metrics``) and reports (``report``).
+Discrepancy discovery is not implemented yet (issue 6)."""

@@ -1,0 +1,472 @@
+"""Validation report: the model's predictions against measured keypoints (paper, 5.1, Table 1).
+
+``predict`` solves every row's design with the certified ``solve`` (Newton, cold start, the
+same deterministic solve as ``stitchswitch simulate``); identical designs are solved once. A
+solve that does not converge is kept (the paper's own predictions are uncertified Adam
+results) and recorded: ``Predictions.converged``, the ``converged`` field of each row in
+report.json, a list in the report and a marker in the plots.
+
+``write_report`` writes into one directory::
+
+    report.md  report.html  report.json  scatter_<q>.png (q in h, r_a, z_a, r_b, z_b)
+    all_quantities.png  height_map.png
+
+report.html is self-contained (inline CSS, the PNGs as base64 data URIs, no external
+resources). report.json holds the metrics under ``train``/``val`` (see ``metrics``), the
+paper's Table 1 under ``paper_table1``, the data's provenance and sha256, the material's
+hash and every row's prediction. No timestamps: equal inputs give an equal report.json.
+
+The directory is written as a whole: the report is built in a temporary directory next to it
+and renamed into place, so on any error nothing is left behind. An existing target must be
+empty or a previous report of this tool (its report.json says ``"generator": "stitchswitch
+validate"`` and it holds no other files); a previous report is then replaced (moved aside,
+the new one renamed in, the old one deleted). Anything else is refused with
+``InvalidInputError`` before any work is done.
+
+The height map is ``map_cache.map_for(material)``: the shipped map for the default material;
+for any other material it is built on first use (about 25 s on 2 cores) and cached.
+"""
+from __future__ import annotations
+
+import base64
+import contextlib
+import html
+import io
+import json
+import logging
+import math
+import os
+import secrets
+import shutil
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from stitchswitch import __version__
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.reduced.material_io import material_hash
+from stitchswitch.reduced.params import Material, Patch
+from stitchswitch.validation.measured import QUANTITIES, SPLITS, MeasuredData
+from stitchswitch.validation.metrics import PAPER_TABLE1, table1
+
+__all__ = ["Predictions", "predict", "write_report", "check_report_dir", "provenance_statement",
+           "REPORT_FILES", "GENERATOR"]
+
+log = logging.getLogger(__name__)
+
+GENERATOR = "stitchswitch validate"
+FIGURES = tuple(f"scatter_{q}.png" for q in QUANTITIES) + ("all_quantities.png", "height_map.png")
+REPORT_FILES = ("report.md", "report.html", "report.json") + FIGURES
+COLORS = {"train": "tab:blue", "val": "tab:orange"}
+LABELS = {"h": "peak height h", "r_a": "boundary radius r_a", "z_a": "boundary height z_a",
+          "r_b": "radius r_b at b", "z_b": "height z_b at b"}
+PCT_DEFINITION = ("mean over the rows of 100 |predicted - measured| / |measured|; rows measured "
+                  "as exactly 0 are left out of the percentage only (counted as skipped)")
+MAE_DEFINITION = "mean over the rows of |predicted - measured|, in mm"
+
+
+@dataclass(frozen=True)
+class Predictions:
+    """Model keypoints for every row of a ``MeasuredData`` (same order): ``values`` (n, 5) in
+    mm, columns h, r_a, z_a, r_b, z_b; the certificate of each solve (``converged``,
+    ``residual``) and the rule that placed b (``b_rule``)."""
+
+    values: np.ndarray
+    converged: np.ndarray
+    residual: np.ndarray
+    b_rule: tuple
+
+    @property
+    def all_converged(self) -> bool:
+        return bool(np.all(self.converged))
+
+
+def predict(data: MeasuredData, material: Material) -> Predictions:
+    """Solve each row's design (d, p) with ``solve``; identical designs are solved once."""
+    from stitchswitch.reduced.solve import solve
+
+    cache = {}
+    for r in data.rows:
+        key = (r.d_mm, r.fill)
+        if key not in cache:
+            sol = solve(Patch(r.d_mm, r.fill), material)
+            kp = sol.keypoints
+            cache[key] = ((kp.h_mm, kp.r_a_mm, kp.z_a_mm, kp.r_b_mm, kp.z_b_mm),
+                          sol.converged, sol.residual, kp.b_rule)
+    rows = [cache[(r.d_mm, r.fill)] for r in data.rows]
+    values = np.array([v for v, *_ in rows], dtype=float).reshape(len(rows), len(QUANTITIES))
+    return Predictions(values=values, converged=np.array([c for _, c, _, _ in rows], bool),
+                       residual=np.array([res for _, _, res, _ in rows], float),
+                       b_rule=tuple(b for *_, b in rows))
+
+
+# ----------------------------------------------------------------------------- target directory
+
+def check_report_dir(outdir) -> bool:
+    """Raise ``InvalidInputError`` unless ``outdir`` can take a report; True if it holds a
+    previous report that will be replaced."""
+    out = Path(outdir)
+    where = f"report directory {os.fspath(outdir)!r}"
+    parent = out.absolute().parent
+    if not parent.is_dir():
+        raise InvalidInputError(f"{where}: the parent directory {str(parent)!r} does not exist")
+    if not out.exists() and not out.is_symlink():
+        return False
+    if out.is_symlink() or not out.is_dir():
+        raise InvalidInputError(f"{where}: exists and is not a directory")
+    entries = sorted(p.name for p in out.iterdir())
+    if not entries:
+        return False
+    foreign = [e for e in entries if e not in REPORT_FILES]
+    try:
+        previous = json.loads((out / "report.json").read_text("utf-8")).get("generator") == GENERATOR
+    except (OSError, ValueError, AttributeError):
+        previous = False
+    if foreign or not previous:
+        what = f"holds {foreign[0]!r}, not from this tool" if foreign else \
+            "is not empty and holds no report.json of this tool"
+        raise InvalidInputError(f"{where}: {what}; give an empty or new directory, or one "
+                                "holding a previous report")
+    return True
+
+
+def _new_dir_next_to(out: Path, tag: str) -> Path:
+    for _ in range(100):
+        tmp = out.absolute().parent / f".{out.name}.{secrets.token_hex(6)}.{tag}"
+        try:
+            os.mkdir(tmp, 0o777)  # the umask applies, as for a plain mkdir
+            return tmp
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"could not create a temporary directory next to {str(out)!r}")
+
+
+def _place(tmp: Path, out: Path) -> None:
+    """Move the finished report ``tmp`` to ``out`` (absent, empty, or a previous report)."""
+    if out.is_dir() and not any(out.iterdir()):
+        out.rmdir()
+    if not out.exists():
+        os.rename(tmp, out)
+        return
+    old = _new_dir_next_to(out, "old")
+    old.rmdir()
+    os.rename(out, old)
+    try:
+        os.rename(tmp, out)
+    except BaseException:
+        os.rename(old, out)
+        raise
+    shutil.rmtree(old, ignore_errors=True)
+
+
+# ----------------------------------------------------------------------------- figures
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _scatter(ax, k: int, q: str, measured, pred: Predictions, splits, show_legend=True) -> None:
+    m, y = measured[:, k], pred.values[:, k]
+    for s in SPLITS:
+        sel = splits == s
+        ax.scatter(m[sel], y[sel], s=26, c=COLORS[s], edgecolors="black", linewidths=0.4,
+                   label=f"{s} ({int(sel.sum())})", zorder=3)
+    bad = ~pred.converged
+    if np.any(bad):
+        ax.scatter(m[bad], y[bad], s=60, facecolors="none", edgecolors="red", linewidths=1.0,
+                   label=f"solve not converged ({int(bad.sum())})", zorder=4)
+    lo = min(float(m.min()), float(y.min()))
+    hi = max(float(m.max()), float(y.max()))
+    pad = 0.06 * (hi - lo) if hi > lo else 1.0
+    lo, hi = lo - pad, hi + pad
+    ax.plot([lo, hi], [lo, hi], color="0.4", lw=0.8, ls="--", zorder=1, label="y = x")
+    ax.set_xlim(lo, hi)
+    ax.set_ylim(lo, hi)
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_xlabel(f"measured {q} (mm)")
+    ax.set_ylabel(f"predicted {q} (mm)")
+    ax.set_title(LABELS[q], fontsize=10)
+    ax.grid(True, lw=0.3, alpha=0.5)
+    if show_legend:
+        ax.legend(fontsize=7, loc="upper left", framealpha=0.85)
+
+
+def _png(fig) -> bytes:
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png")
+    _pyplot().close(fig)
+    return buf.getvalue()
+
+
+def _figures(data: MeasuredData, pred: Predictions, material: Material, tmp: Path) -> None:
+    from stitchswitch.reduced.map_cache import map_for
+    from stitchswitch.reduced.map_plot import plot_height_map
+
+    plt = _pyplot()
+    measured = data.keypoints()
+    splits = np.array([r.split for r in data.rows])
+    for k, q in enumerate(QUANTITIES):
+        fig, ax = plt.subplots(figsize=(4.4, 4.4), dpi=120)
+        _scatter(ax, k, q, measured, pred, splits)
+        fig.tight_layout()
+        (tmp / f"scatter_{q}.png").write_bytes(_png(fig))
+    fig, axes = plt.subplots(2, 3, figsize=(12.0, 8.8), dpi=110)
+    for k, q in enumerate(QUANTITIES):
+        _scatter(axes.flat[k], k, q, measured, pred, splits, show_legend=False)
+    handles, labels = axes.flat[0].get_legend_handles_labels()
+    axes.flat[5].axis("off")
+    axes.flat[5].legend(handles, labels, loc="center", fontsize=10, frameon=False,
+                        title="measured vs. predicted")
+    fig.suptitle("Actual vs. predicted keypoints (mm)", fontsize=12)
+    fig.tight_layout(h_pad=2.0)
+    (tmp / "all_quantities.png").write_bytes(_png(fig))
+    dmap = map_for(material)
+    points = {f"{s} data ({len(data.split(s))})": (data.array("d_mm", s), data.array("fill", s))
+              for s in SPLITS}
+    plot_height_map(dmap, tmp / "height_map.png", points=points,
+                    title=f"Predicted h(d, p) with the data, material {dmap.material_hash[:10]}")
+
+
+# ----------------------------------------------------------------------------- report text
+
+def _fmt(v, digits: int) -> str:
+    return "n/a" if v is None or (isinstance(v, float) and not math.isfinite(v)) else f"{v:.{digits}f}"
+
+
+def provenance_statement(data: MeasuredData) -> str:
+    """One sentence on what the data are, from the file's ``# source:`` line."""
+    if data.synthetic:
+        return ("SYNTHETIC DATA: the data file's source line says synthetic, so these rows are "
+                "not measurements of fabricated patches and the agreement below says nothing "
+                "about real textiles.")
+    if data.source == "unspecified":
+        return ("Unspecified provenance: the data file has no '# source:' line, so it is not "
+                "known whether these rows are measurements.")
+    return f"The data file's source line does not say synthetic: {data.source}"
+
+
+def _jsonable(obj):
+    if isinstance(obj, dict):
+        return {k: _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, np.generic):
+        obj = obj.item()
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    return obj
+
+
+def _report_dict(data: MeasuredData, pred: Predictions, material: Material, label: str) -> dict:
+    rows = []
+    for i, r in enumerate(data.rows):
+        rows.append({
+            "line": r.line, "sample_id": r.sample_id, "split": r.split, "d_mm": r.d_mm,
+            "fill": r.fill,
+            "measured": {q: getattr(r, f"{q}_mm") for q in QUANTITIES},
+            "predicted": {q: float(pred.values[i, k]) for k, q in enumerate(QUANTITIES)},
+            "converged": bool(pred.converged[i]), "residual": float(pred.residual[i]),
+            "b_rule": pred.b_rule[i]})
+    metrics = table1(data, pred.values)
+    return _jsonable({
+        "generator": GENERATOR, "version": __version__,
+        "data": {"path": data.path, "source": data.source, "synthetic": data.synthetic,
+                 "provenance": provenance_statement(data), "sha256": data.sha256,
+                 "n_train": len(data.split("train")), "n_val": len(data.split("val"))},
+        "material": {"label": label, "sha256": material_hash(material)},
+        "solver": "newton (certified, cold start)",
+        "definitions": {"pct_error": PCT_DEFINITION, "mae_mm": MAE_DEFINITION},
+        "train": metrics["train"], "val": metrics["val"],
+        "paper_table1": {**PAPER_TABLE1, "note": "quoted from the paper (Table 1): its own 25 "
+                         "train and 28 validation patches, not computed here"},
+        "not_converged": [r["line"] for r in rows if not r["converged"]],
+        "rows": rows,
+        "files": list(REPORT_FILES),
+    })
+
+
+def _metric_rows(rep: dict) -> list[list[str]]:
+    out = []
+    for q in QUANTITIES:
+        t, v = rep["train"][q], rep["val"][q]
+        pt, pv = PAPER_TABLE1["train"][q], PAPER_TABLE1["val"][q]
+        out.append([q, _fmt(t["pct_error"], 1), _fmt(v["pct_error"], 1), _fmt(t["mae_mm"], 2),
+                    _fmt(v["mae_mm"], 2), f"{pt['pct_error']:.1f} / {pv['pct_error']:.1f}",
+                    f"{pt['mae_mm']:.2f} / {pv['mae_mm']:.2f}"])
+    return out
+
+
+METRIC_HEADER = ["quantity", "error % train", "error % val", "MAE train (mm)", "MAE val (mm)",
+                 "paper error % train / val", "paper MAE train / val (mm)"]
+ROW_HEADER = ["line", "sample", "split", "d (mm)", "fill"] + \
+    [f"{q} meas / pred" for q in QUANTITIES] + ["converged"]
+
+
+def _row_cells(r: dict) -> list[str]:
+    return [str(r["line"]), r["sample_id"] or "-", r["split"], f"{r['d_mm']:g}", f"{r['fill']:g}"] + \
+        [f"{r['measured'][q]:.2f} / {r['predicted'][q]:.2f}" for q in QUANTITIES] + \
+        ["yes" if r["converged"] else "NO"]
+
+
+def _skips(rep: dict) -> list[str]:
+    return [f"{s} {q}: {rep[s][q]['n_pct_skipped']} row(s) measured as 0"
+            for s in SPLITS for q in QUANTITIES if rep[s][q]["n_pct_skipped"]]
+
+
+def _markdown(rep: dict) -> str:
+    d, m = rep["data"], rep["material"]
+    md = lambda cells: "| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |"  # noqa: E731
+    lines = ["# Model validation against measured keypoints", "",
+             f"> **{d['provenance']}**", "",
+             f"- data: `{d['path']}` (sha256 `{d['sha256']}`)",
+             f"- source line: {d['source']}",
+             f"- rows: {d['n_train']} train, {d['n_val']} val",
+             f"- material: {m['label']} (sha256 `{m['sha256']}`)",
+             f"- predictions: {rep['solver']}; "
+             + ("every solve converged" if not rep["not_converged"] else
+                f"**{len(rep['not_converged'])} solve(s) did not converge** (lines "
+                f"{', '.join(map(str, rep['not_converged']))}); they are included"), "",
+             "## Agreement per quantity (as in the paper's Table 1)", "",
+             md(METRIC_HEADER), md(["---"] * len(METRIC_HEADER))]
+    lines += [md(r) for r in _metric_rows(rep)]
+    lines += ["", f"Error %: {PCT_DEFINITION}. MAE: {MAE_DEFINITION}. The paper's columns are "
+              "quoted from its Table 1 (its own patches), for comparison only."]
+    if _skips(rep):
+        lines += ["", "Left out of the error %: " + "; ".join(_skips(rep)) + "."]
+    lines += ["", "## Actual vs. predicted (as in the paper's Fig. 4 right and Fig. 8)", "",
+              "![all quantities](all_quantities.png)", "",
+              "Per quantity: " + ", ".join(f"[{q}](scatter_{q}.png)" for q in QUANTITIES) + ".",
+              "", "## The data on the predicted height map h(d, p)", "",
+              "![height map](height_map.png)", "", "## Rows", "",
+              md(ROW_HEADER), md(["---"] * len(ROW_HEADER))]
+    lines += [md(_row_cells(r)) for r in rep["rows"]]
+    lines += ["", f"Generated by `{rep['generator']}` {rep['version']}; the numbers are in "
+              "report.json.", ""]
+    return "\n".join(lines)
+
+
+_CSS = """
+*{box-sizing:border-box}
+body{margin:0;background:#f4f5f7;color:#1d232b;font:15px/1.45 system-ui,-apple-system,"Segoe UI",
+Roboto,"Helvetica Neue",Arial,sans-serif}
+main{max-width:1160px;margin:0 auto;padding:24px 28px 40px;background:#fff;min-height:100vh}
+h1{font-size:26px;margin:4px 0 14px}
+h2{font-size:19px;margin:30px 0 10px;padding-bottom:4px;border-bottom:1px solid #dde1e6}
+.banner{padding:12px 16px;border-radius:6px;font-weight:600;margin:0 0 18px}
+.banner.synthetic{background:#fff1d6;border:2px solid #e09a00;color:#6b4500}
+.banner.unspecified{background:#eef0f3;border:2px solid #8a94a3;color:#2c3440}
+.banner.measured{background:#e6f4ea;border:2px solid #3a9a5b;color:#1e5631}
+table{border-collapse:collapse;font-variant-numeric:tabular-nums}
+th,td{padding:5px 10px;border-bottom:1px solid #e3e6ea;text-align:right;white-space:nowrap}
+th{background:#f0f2f5;font-weight:600}
+td:first-child,th:first-child{text-align:left}
+table.meta td,table.meta th{text-align:left;white-space:normal;word-break:break-all}
+table.meta th{width:150px;background:none;white-space:nowrap}
+td.paper,th.paper{color:#5b6573;background:#f8f9fb}
+.scroll{overflow-x:auto;max-width:100%}
+table.rows{font-size:13px}
+tr.bad td{background:#fde8e8}
+p.note{color:#4a5361;font-size:13.5px;max-width:900px}
+.grid{display:grid;grid-template-columns:repeat(auto-fill,minmax(330px,1fr));gap:14px}
+figure{margin:0;text-align:center}
+figure img{width:100%;height:auto;border:1px solid #e3e6ea}
+img.wide{display:block;max-width:100%;height:auto;margin:0 auto;border:1px solid #e3e6ea}
+code{font-size:13px;background:#f0f2f5;padding:1px 4px;border-radius:3px}
+footer{margin-top:30px;color:#6b7480;font-size:12.5px}
+"""
+
+
+def _html(rep: dict, images: dict[str, bytes]) -> str:
+    e = lambda s: html.escape(str(s))  # noqa: E731
+    d, m = rep["data"], rep["material"]
+    uri = lambda name: "data:image/png;base64," + base64.b64encode(images[name]).decode("ascii")  # noqa: E731
+    kind = "synthetic" if d["synthetic"] else "unspecified" if d["source"] == "unspecified" else "measured"
+    head = "".join(f'<th class="paper">{e(h)}</th>' if h.startswith("paper") else f"<th>{e(h)}</th>"
+                   for h in METRIC_HEADER)
+    metric_rows = "".join(
+        "<tr>" + "".join(f'<td class="paper">{e(c)}</td>' if j >= 5 else f"<td>{e(c)}</td>"
+                         for j, c in enumerate(row)) + "</tr>" for row in _metric_rows(rep))
+    conv = ("every solve converged" if not rep["not_converged"] else
+            f"<strong>{len(rep['not_converged'])} solve(s) did not converge</strong> (lines "
+            f"{e(', '.join(map(str, rep['not_converged'])))}); they are included and circled red")
+    meta = [("data file", f"<code>{e(d['path'])}</code>"), ("source line", e(d["source"])),
+            ("data sha256", f"<code>{e(d['sha256'])}</code>"),
+            ("rows", f"{d['n_train']} train, {d['n_val']} val"),
+            ("material", f"{e(m['label'])}"), ("material sha256", f"<code>{e(m['sha256'])}</code>"),
+            ("predictions", f"{e(rep['solver'])}; {conv}")]
+    meta_html = "".join(f"<tr><th>{e(k)}</th><td>{v}</td></tr>" for k, v in meta)
+    skips = _skips(rep)
+    figs = "".join(f'<figure><img src="{uri(f"scatter_{q}.png")}" '
+                   f'alt="measured vs. predicted {e(LABELS[q])}"></figure>' for q in QUANTITIES)
+    row_head = "".join(f"<th>{e(h)}</th>" for h in ROW_HEADER)
+    bad = ' class="bad"'
+    row_html = "".join(
+        f"<tr{'' if r['converged'] else bad}>" +
+        "".join(f"<td>{e(c)}</td>" for c in _row_cells(r)) + "</tr>" for r in rep["rows"])
+    return f"""<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>stitchswitch validation: {e(os.path.basename(d['path']))}</title>
+<style>{_CSS}</style>
+</head>
+<body>
+<main>
+<h1>Model validation against measured keypoints</h1>
+<p class="banner {kind}">{e(d['provenance'])}</p>
+<table class="meta">{meta_html}</table>
+<h2>Agreement per quantity (as in the paper's Table 1)</h2>
+<div class="scroll"><table class="metrics"><thead><tr>{head}</tr></thead>
+<tbody>{metric_rows}</tbody></table></div>
+<p class="note">Error %: {e(PCT_DEFINITION)}. MAE: {e(MAE_DEFINITION)}. The grey columns are
+quoted from the paper's Table 1 (its own fabricated patches), for comparison only.
+{e('Left out of the error %: ' + '; '.join(skips) + '.') if skips else ''}</p>
+<h2>Actual vs. predicted (as in the paper's Fig. 4 right and Fig. 8)</h2>
+<div class="grid">{figs}</div>
+<h2>The data on the predicted height map h(d, p)</h2>
+<img class="wide" src="{uri('height_map.png')}" alt="height map with the data points">
+<h2>Rows</h2>
+<div class="scroll"><table class="rows"><thead><tr>{row_head}</tr></thead>
+<tbody>{row_html}</tbody></table></div>
+<footer>Generated by {e(rep['generator'])} {e(rep['version'])}. The numbers are in report.json;
+the figures are also saved as PNG files next to this page.</footer>
+</main>
+</body>
+</html>
+"""
+
+
+# ----------------------------------------------------------------------------- entry point
+
+def write_report(data: MeasuredData, material: Material, outdir, material_label: str = "default") -> dict:
+    """Predict every row, compare, and write the report directory ``outdir`` as a whole (see
+    the module docstring). Returns the content of report.json."""
+    out = Path(outdir)
+    check_report_dir(out)
+    pred = predict(data, material)
+    if not pred.all_converged:
+        log.warning("%d of %d solves did not converge (lines %s); their predictions are included "
+                    "and marked", int((~pred.converged).sum()), len(data.rows),
+                    ", ".join(str(r.line) for r, c in zip(data.rows, pred.converged) if not c))
+    rep = _report_dict(data, pred, material, material_label)
+    tmp = _new_dir_next_to(out, "tmp")
+    try:
+        _figures(data, pred, material, tmp)
+        images = {name: (tmp / name).read_bytes() for name in FIGURES}
+        (tmp / "report.json").write_text(json.dumps(rep, indent=2, allow_nan=False) + "\n", "utf-8")
+        (tmp / "report.md").write_text(_markdown(rep), "utf-8")
+        (tmp / "report.html").write_text(_html(rep, images), "utf-8")
+        check_report_dir(out)  # still acceptable after the work?
+        _place(tmp, out)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            shutil.rmtree(tmp)
+        raise
+    return rep

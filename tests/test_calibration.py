@@ -1,0 +1,74 @@
+"""Calibration by differential evolution: recovery of known parameters, identifiability."""
+import numpy as np
+import pytest
+
+from stitchswitch import DEFAULT_MATERIAL, InvalidInputError
+from stitchswitch.reduced import calibration as cal
+from stitchswitch.reduced.params import Patch
+from stitchswitch.reduced.solve import solve
+
+TRUE = DEFAULT_MATERIAL.replace(w_b_emb=14.0, k_r_emb=1.6)
+DESIGNS = [(30.0, 0.7), (30.0, 0.9), (50.0, 0.7), (50.0, 0.9), (80.0, 0.8)]
+
+
+@pytest.fixture(scope="module")
+def recovered():
+    measured, bad = cal.predict_keypoints(TRUE, DESIGNS)
+    assert bad == 0
+    result = cal.calibrate(DESIGNS, measured, DEFAULT_MATERIAL, maxiter=12, popsize=6, seed=3,
+                           free=("w_b_emb", "k_r_emb"))
+    return result, measured
+
+
+def test_recovers_keypoints_of_noise_free_synthetic_data(recovered):
+    result, measured = recovered
+    pred, bad = cal.predict_keypoints(result.material, DESIGNS)
+    assert bad == 0
+    assert np.max(np.abs(pred - measured) / np.abs(measured)) < 0.01          # within 1 %
+    assert result.material.w_b_emb == pytest.approx(14.0, rel=0.05)
+    assert result.material.k_r_emb == pytest.approx(1.6, rel=0.05)
+    start_pred, _ = cal.predict_keypoints(DEFAULT_MATERIAL, DESIGNS)
+    assert result.mse_mm2 < 0.01 * np.mean((start_pred - measured) ** 2)
+
+
+def test_identifiability_report(recovered):
+    result, _ = recovered
+    ident = result.identifiability
+    assert "overall scale" in ident["not_identifiable"] and cal.SCALE_PARAM in ident["not_identifiable"]
+    assert len(ident["singular_values"]) == 2 and ident["condition_number"] >= 1.0
+
+
+def test_overall_scale_is_not_identifiable():
+    """Scaling every coefficient by one factor leaves the equilibrium unchanged."""
+    scaled = DEFAULT_MATERIAL.replace(**{n: 3.0 * getattr(DEFAULT_MATERIAL, n) for n in cal.PARAMS})
+    a, b = solve(Patch(45.0, 0.8)), solve(Patch(45.0, 0.8), scaled)
+    np.testing.assert_allclose(a.z_mm, b.z_mm, atol=1e-6)      # solver tolerance
+    assert b.energy == pytest.approx(3.0 * a.energy, rel=1e-9)
+
+
+def test_identifiability_flags_a_redundant_pair():
+    """The same parameter listed twice is a redundant pair: one singular value vanishes and
+    the weak direction is reported."""
+    measured, _ = cal.predict_keypoints(DEFAULT_MATERIAL, DESIGNS[:3])
+    obj = cal.Objective(DEFAULT_MATERIAL, ("k_r_emb", "k_r_emb"), tuple(DESIGNS[:3]), measured)
+    ident = cal.identifiability(obj, cal._to_x(DEFAULT_MATERIAL.as_dict(), obj.free))
+    assert ident["singular_values"][1] < 1e-6 * ident["singular_values"][0]
+    assert len(ident["weak_directions"]) == 1
+
+
+def test_parallel_evaluation_matches_serial():
+    from stitchswitch.executor import make_executor
+
+    measured, _ = cal.predict_keypoints(TRUE, DESIGNS[:3])
+    kwargs = dict(maxiter=2, popsize=4, seed=5, free=("w_b_emb",), check_identifiability=False)
+    serial = cal.calibrate(DESIGNS[:3], measured, DEFAULT_MATERIAL, **kwargs)
+    with make_executor(2) as ex:
+        par = cal.calibrate(DESIGNS[:3], measured, DEFAULT_MATERIAL, executor=ex, **kwargs)
+    assert par.material.w_b_emb == pytest.approx(serial.material.w_b_emb, rel=1e-12)
+
+
+def test_bad_arguments():
+    with pytest.raises(InvalidInputError, match="k_theta_fab"):
+        cal.calibrate(DESIGNS, np.zeros((5, 5)), DEFAULT_MATERIAL, free=("k_theta_fab",))
+    with pytest.raises(InvalidInputError, match="measured"):
+        cal.calibrate(DESIGNS, np.zeros((4, 5)), DEFAULT_MATERIAL)
