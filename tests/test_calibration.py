@@ -72,3 +72,21 @@ def test_bad_arguments():
         cal.calibrate(DESIGNS, np.zeros((5, 5)), DEFAULT_MATERIAL, free=("k_theta_fab",))
     with pytest.raises(InvalidInputError, match="measured"):
         cal.calibrate(DESIGNS, np.zeros((4, 5)), DEFAULT_MATERIAL)
+
+
+def test_synthetic_dataset_is_reproducible_and_labelled(tmp_path):
+    import importlib.util
+    import pathlib
+
+    root = pathlib.Path(__file__).resolve().parent.parent
+    spec = importlib.util.spec_from_file_location("gen", root / "scripts" / "make_measured_dataset.py")
+    gen = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gen)
+    gen.main([str(tmp_path / "m.csv")])
+    shipped = root / "src" / "stitchswitch" / "data" / "measured_synthetic.csv"
+    assert (tmp_path / "m.csv").read_bytes() == shipped.read_bytes()
+    first = shipped.read_text().splitlines()[0]
+    assert first.startswith("# source: synthetic") and "NOT measured" in first
+    from stitchswitch.validation.measured import load_measurements
+    data = load_measurements(shipped)
+    assert len(data.split("train")) == 25 and len(data.split("val")) == 28 and data.synthetic

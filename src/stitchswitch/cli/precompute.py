@@ -23,12 +23,14 @@ from stitchswitch.reduced.params import DEFAULT_MATERIAL
               help="Fill fractions (inclusive range).")
 @click.option("--workers", type=click.IntRange(min=1), default=None, metavar="N",
               help="Worker processes (default: one per core).")
+@click.option("--scheduler", default=None, metavar="tcp://HOST:PORT",
+              help="Solve on a Dask distributed cluster instead of local processes.")
 @click.option("--out", "out", type=click.Path(dir_okay=False, path_type=pathlib.Path),
               required=True, metavar="FILE", help="Output map (.npz).")
 @click.option("--plot", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
               metavar="PNG", help="Also write the h(d, p) heatmap.")
 @options.json_opt
-def precompute(material_path, diameters, fills, workers, out, plot, as_json):
+def precompute(material_path, diameters, fills, workers, scheduler, out, plot, as_json):
     """Solve every (d, p) of the grid and write the design-space map.
 
     Every point is a certified solve; points that fail the neighbour-mean smoothness test are
@@ -47,7 +49,8 @@ def precompute(material_path, diameters, fills, workers, out, plot, as_json):
             bar.update(done - last[0])
             last[0] = done
 
-        dmap = build_map.build(material, d, p, workers=workers, progress=progress)
+        dmap = build_map.build(material, d, p, workers=workers, progress=progress,
+                               scheduler=scheduler)
     seconds = time.perf_counter() - t0
     map_io.save_map(dmap, out)
     if plot is not None:

@@ -57,8 +57,10 @@ def _solve_row(args):
 
 
 def build(material: Material = DEFAULT_MATERIAL, diameters_mm=DEFAULT_DIAMETERS_MM,
-          fills=DEFAULT_FILLS, workers: int = 1, progress=None, check: bool = True) -> DesignMap:
-    """Solve every grid design; ``progress(rows_done)`` is called once per diameter.
+          fills=DEFAULT_FILLS, workers: int = 1, progress=None, check: bool = True,
+          scheduler: str | None = None) -> DesignMap:
+    """Solve every grid design; ``progress(rows_done)`` is called once per diameter (local
+    runs). ``scheduler``: a Dask scheduler address to solve the rows on a cluster.
 
     With ``check`` the smoothness test runs and unsmooth points are explained and flagged
     (``map_check.classify``)."""
@@ -72,7 +74,8 @@ def build(material: Material = DEFAULT_MATERIAL, diameters_mm=DEFAULT_DIAMETERS_
     for dd in d:                       # validate every design before any work
         for pp in (p[0], p[-1]):
             Patch(dd, pp)
-    rows = run_all(_solve_row, [(float(x), p.tolist(), material) for x in d], workers, progress)
+    rows = run_all(_solve_row, [(float(x), p.tolist(), material) for x in d], workers, progress,
+                   scheduler=scheduler)
     table = {k: np.array([r[0][k] for r in rows]) for k in rows[0][0]}
     dmap = DesignMap(
         diameter_mm=d, fill=p,
