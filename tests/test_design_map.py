@@ -4,7 +4,7 @@ import pytest
 
 from stitchswitch import DEFAULT_MATERIAL, InvalidInputError, Patch, solve
 from stitchswitch.reduced import map_check, map_io, precompute
-from stitchswitch.reduced.design_map import FLAG_ONSET, FLAG_SMOOTH, KEYPOINTS
+from stitchswitch.reduced.design_map import FLAG_ONSET, FLAG_SMOOTH, FLAG_UNRESOLVED, KEYPOINTS
 
 
 @pytest.fixture(scope="module")
@@ -97,7 +97,7 @@ def test_onset_is_explained(small_map):
     m = precompute.build(DEFAULT_MATERIAL, np.arange(15.0, 19.0), np.round(np.arange(0.68, 0.745, 0.01), 2))
     flagged = m.flags != FLAG_SMOOTH
     assert flagged.any() and np.any(m.flags == FLAG_ONSET)
-    assert set(np.unique(m.flags)) <= {FLAG_SMOOTH, FLAG_ONSET, 3}    # no unexplained point
+    assert set(np.unique(m.flags)) <= {FLAG_SMOOTH, FLAG_ONSET, FLAG_UNRESOLVED}    # none unexplained
 
 
 def test_parse_range():

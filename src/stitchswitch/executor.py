@@ -35,8 +35,12 @@ def default_workers() -> int:
 
 
 class SerialExecutor:
+    def imap(self, func: Callable, items):
+        """Results one by one, in order."""
+        return (func(item) for item in items)
+
     def map(self, func: Callable, items) -> list:
-        return [func(item) for item in items]
+        return list(self.imap(func, items))
 
     def __call__(self, func: Callable, items) -> list:     # scipy's map-like protocol
         return self.map(func, items)
@@ -60,8 +64,8 @@ class LocalExecutor(SerialExecutor):
         self._pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx,
                                          initializer=_limit_threads)
 
-    def map(self, func: Callable, items) -> list:
-        return list(self._pool.map(func, list(items)))
+    def imap(self, func: Callable, items):
+        return self._pool.map(func, list(items))
 
     def close(self) -> None:
         self._pool.shutdown()
@@ -76,9 +80,9 @@ class DaskExecutor(SerialExecutor):
         except (OSError, TimeoutError) as exc:
             raise InvalidInputError(f"scheduler: cannot connect to {scheduler!r} ({exc})") from None
 
-    def map(self, func: Callable, items) -> list:
+    def imap(self, func: Callable, items):
         futures = self._client.map(func, list(items), pure=False)
-        return self._client.gather(futures)
+        return iter(self._client.gather(futures))
 
     def close(self) -> None:
         self._client.close()
@@ -97,26 +101,14 @@ def make_executor(workers: int = 1, scheduler: str | None = None) -> SerialExecu
 
 def run_all(func: Callable, items: Sequence, workers: int = 1, progress: Callable | None = None,
             scheduler: str | None = None) -> list:
-    """[func(item) for item in items] in order; ``progress(n_done)`` after each item (local
-    runs) or once at the end (Dask)."""
+    """[func(item) for item in items] in order; ``progress(n_done)`` after each result."""
     items = list(items)
-    if scheduler is None and (workers == 1 or len(items) <= 1):
-        make_executor(workers)                      # validates ``workers``
-        results = []
-        for item in items:
-            results.append(func(item))
+    if type(workers) is int and workers > len(items):       # no idle processes
+        workers = max(len(items), 1)
+    results = []
+    with make_executor(workers, scheduler) as ex:
+        for result in ex.imap(func, items):
+            results.append(result)
             if progress:
                 progress(len(results))
-        return results
-    with make_executor(min(workers, max(len(items), 1)), scheduler) as ex:
-        if isinstance(ex, LocalExecutor):
-            results = []
-            for result in ex._pool.map(func, items):
-                results.append(result)
-                if progress:
-                    progress(len(results))
-            return results
-        results = ex.map(func, items)
-    if progress:
-        progress(len(results))
     return results
