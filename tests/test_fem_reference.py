@@ -1,0 +1,82 @@
+"""The shell reference: exact derivatives, and agreement with the reduced model."""
+import numpy as np
+import pytest
+
+from stitchswitch import DEFAULT_MATERIAL, Patch, solve
+from stitchswitch.fem_reference.density import density
+from stitchswitch.fem_reference.shell import ShellModel
+from stitchswitch.reduced.keypoints import keypoints_from_profile
+
+
+@pytest.mark.parametrize("hoop, nu", [(0.0, 0.0), (1.0, 0.3)])
+def test_density_derivatives_match_finite_differences(hoop, nu):
+    rng = np.random.default_rng(0)
+    n = 9
+    q = np.array([rng.uniform(1, 5, n), rng.uniform(0.3, 2, n), rng.uniform(-1.5, 0.2, n),
+                  rng.uniform(-1, 1, n), rng.uniform(-1, 1, n)])
+    S = rng.uniform(0.5, 4, n)
+    coef = dict(lam=np.where(S < 2, 1.5, 1.0), k_r=1.0, k_theta=0.7, w_b=10.0, w_log=0.3,
+                gamma=1.0, c=0.01, hoop=hoop, nu=nu)
+    f, g, H = density(q, S, coef)
+    eps = 1e-6
+    for k in range(5):
+        dq = np.zeros_like(q)
+        dq[k] = eps
+        fp, gp, _ = density(q + dq, S, coef)
+        fm, gm, _ = density(q - dq, S, coef)
+        np.testing.assert_allclose(g[k], (fp - fm) / (2 * eps), rtol=1e-6, atol=1e-8)
+        np.testing.assert_allclose(H[:, k], (gp - gm) / (2 * eps), rtol=1e-6, atol=1e-7)
+    np.testing.assert_allclose(H, H.transpose(1, 0, 2), atol=1e-12)
+
+
+@pytest.fixture(scope="module")
+def small_model():
+    patch = Patch(30.0, 0.9)
+    model = ShellModel(patch, DEFAULT_MATERIAL.replace(n_nodes=80), elements_inside=8, growth=1.3)
+    red = solve(patch, DEFAULT_MATERIAL)
+    return model, model.start_from_profile(red.R_mm, red.r_mm, red.z_mm)
+
+
+def test_assembled_jacobian_matches_finite_differences(small_model):
+    model, x = small_model
+    E, g, H = model.derivatives(x)
+    assert E == pytest.approx(model.energy(x), rel=1e-12)
+    rng = np.random.default_rng(1)
+    for k in rng.choice(model.free, 8, replace=False):
+        e = np.zeros_like(x)
+        e[k] = 1e-6
+        fd = (model.energy(x + e) - model.energy(x - e)) / 2e-6
+        assert fd == pytest.approx(g[k], rel=1e-5, abs=1e-7)
+        _, gp, _ = model.derivatives(x + e)
+        _, gm, _ = model.derivatives(x - e)
+        col = (gp - gm) / 2e-6
+        np.testing.assert_allclose(H[:, [k]].toarray().ravel(), col, rtol=1e-5, atol=1e-6)
+
+
+@pytest.mark.parametrize("d, p", [(40.0, 0.8), (90.0, 1.0)])
+def test_reference_agrees_with_the_reduced_model(d, p):
+    """At the default resolution: h within 5 % and r_a within 3 % of the reduced N = 300."""
+    patch = Patch(d, p)
+    red = solve(patch)
+    model = ShellModel(patch, DEFAULT_MATERIAL, elements_inside=40)
+    sol = model.solve(model.start_from_profile(red.R_mm, red.r_mm, red.z_mm))
+    assert sol.converged and sol.residual <= 1e-9
+    kp = keypoints_from_profile(*sol.sample())
+    assert abs(kp.h_mm - red.keypoints.h_mm) <= 0.05 * red.keypoints.h_mm
+    assert abs(kp.r_a_mm - red.keypoints.r_a_mm) <= 0.03 * red.keypoints.r_a_mm
+    # the continuum energy of the reduced equilibrium: the reduced energy times N dR^2
+    x_red = model.start_from_profile(red.R_mm, red.r_mm, red.z_mm)
+    assert model.energy(x_red) == pytest.approx(red.energy * 300 * red.dr_mm ** 2, rel=0.05)
+
+
+def test_hoop_bending_switch_stiffens_the_dome():
+    patch = Patch(60.0, 0.8)
+    red = solve(patch)
+    plain = ShellModel(patch, DEFAULT_MATERIAL, elements_inside=30)
+    hoop = ShellModel(patch, DEFAULT_MATERIAL, elements_inside=30, hoop_bending=True, poisson=0.3)
+    x0 = plain.start_from_profile(red.R_mm, red.r_mm, red.z_mm)
+    assert hoop.energy(x0) > plain.energy(x0)              # the extra term is positive here
+    a, b = plain.solve(x0), hoop.solve(x0)
+    assert a.converged and b.converged
+    assert b.energy > a.energy
+    assert not np.allclose(a.z_mm, b.z_mm, atol=1e-3)
