@@ -1,0 +1,63 @@
+"""Surfaces of revolution from 1D profiles, and mesh files through meshio.
+
+A profile (r_i, z_i) revolved about the z axis gives a triangulated surface: ``n_theta``
+copies of the profile around the circle, the pole collapsed to one point. ``write_mesh``
+writes VTU, PLY, OBJ (or any meshio format) atomically: meshio writes a temporary file with the
+same extension next to the target, which then replaces it.
+"""
+from __future__ import annotations
+
+import os
+import tempfile
+
+import numpy as np
+
+from stitchswitch.errors import InvalidInputError
+
+
+def surface_of_revolution(r: np.ndarray, z: np.ndarray, n_theta: int = 64):
+    """(points (M, 3), triangles (K, 3)) of the profile revolved about the z axis.
+
+    Node 0 must be on the axis (r_0 = 0); it becomes a single pole point."""
+    r, z = np.asarray(r, float), np.asarray(z, float)
+    if r.ndim != 1 or r.shape != z.shape or r.size < 2:
+        raise InvalidInputError("profile: r and z must be 1D arrays of the same length (>= 2)")
+    if abs(r[0]) > 1e-12:
+        raise InvalidInputError(f"profile: r[0] = {r[0]:g} must be 0 (the pole)")
+    if n_theta < 3:
+        raise InvalidInputError(f"n_theta: {n_theta} must be >= 3")
+    t = 2 * np.pi * np.arange(n_theta) / n_theta
+    ring_r, ring_z = r[1:], z[1:]
+    pts = np.column_stack([np.outer(ring_r, np.cos(t)).ravel(), np.outer(ring_r, np.sin(t)).ravel(),
+                           np.repeat(ring_z, n_theta)])
+    points = np.vstack([[0.0, 0.0, z[0]], pts])
+    idx = lambda i, j: 1 + i * n_theta + (j % n_theta)            # noqa: E731
+    j = np.arange(n_theta)
+    tris = [np.column_stack([np.zeros(n_theta, int), idx(0, j), idx(0, j + 1)])]
+    for i in range(ring_r.size - 1):
+        tris.append(np.column_stack([idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)]))
+        tris.append(np.column_stack([idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)]))
+    return points, np.vstack(tris)
+
+
+def write_mesh(path, points, triangles, point_data: dict | None = None) -> None:
+    """Write a triangle mesh with meshio (format from the extension), atomically."""
+    import meshio
+
+    path = os.fspath(path)
+    ext = os.path.splitext(path)[1]
+    if not ext:
+        raise InvalidInputError(f"mesh file {path!r}: no extension to choose the format (.vtu, .ply, .obj)")
+    directory = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".mesh-", suffix=ext, dir=directory)
+    os.close(fd)
+    try:
+        mesh = meshio.Mesh(points, [("triangle", triangles)], point_data=point_data or {})
+        try:
+            meshio.write(tmp, mesh)
+        except (meshio.WriteError, KeyError, ValueError) as exc:
+            raise InvalidInputError(f"mesh file {path!r}: {exc}") from None
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
