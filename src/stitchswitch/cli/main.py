@@ -8,6 +8,7 @@ import click
 from stitchswitch import __version__
 from stitchswitch.cli import options
 from stitchswitch.cli.calibrate import calibrate
+from stitchswitch.cli.fem_check import fem_check_cmd
 from stitchswitch.cli.force import force
 from stitchswitch.cli.inverse import inverse
 from stitchswitch.cli.precompute import precompute
@@ -50,3 +51,4 @@ cli.add_command(inverse)
 cli.add_command(force)
 cli.add_command(validate)
 cli.add_command(calibrate)
+cli.add_command(fem_check_cmd)

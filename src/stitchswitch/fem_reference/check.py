@@ -1,0 +1,85 @@
+"""Does the reduced model converge to the shell reference, and how far is N = 300 from it?
+
+For each design the reduced model is solved with N = 75, 150, 300, 600 nodes over the same
+domain (dR_max = 0.5 mm x 300 / N; the bending weights are defined at 0.5 mm, so only the
+resolution changes) and the shell reference with ``ELEMENTS_INSIDE`` Hermite elements on the
+patch, started from the N = 600 equilibrium. The reference's own discretization error is
+estimated by solving it again with half the elements. Reported per keypoint: the relative
+difference (reduced - reference) / reference.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from stitchswitch.fem_reference.shell import ShellModel
+from stitchswitch.reduced.keypoints import keypoints_from_profile
+from stitchswitch.reduced.params import DEFAULT_MATERIAL, Material, Patch
+
+NODES = (75, 150, 300, 600)
+ELEMENTS_INSIDE = 80
+DEFAULT_DESIGNS = tuple((d, p) for d in (25.0, 50.0, 90.0) for p in (0.6, 0.8, 1.0))
+KEYS = ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm")
+TARGETS = {"h_mm": 0.05, "r_a_mm": 0.03}      # at N = 300
+
+
+def _reduced(patch: Patch, material: Material, n: int):
+    from stitchswitch.reduced.solve import solve
+
+    m = material.replace(n_nodes=n, dr_max_mm=material.dr_max_mm * material.n_nodes / n)
+    return solve(patch, m)
+
+
+def _reference(patch, material, start, elements_inside, hoop_bending, poisson):
+    model = ShellModel(patch, material, elements_inside=elements_inside,
+                       growth=1.0 + 3.2 / elements_inside, hoop_bending=hoop_bending, poisson=poisson)
+    sol = model.solve(model.start_from_profile(start.R_mm, start.r_mm, start.z_mm), max_iter=200)
+    return sol, keypoints_from_profile(*sol.sample())
+
+
+def check_design(patch: Patch, material: Material = DEFAULT_MATERIAL, *, hoop_bending=False,
+                 poisson=0.0, elements_inside: int = ELEMENTS_INSIDE) -> dict:
+    reduced = {n: _reduced(patch, material, n) for n in NODES}
+    ref, kp = _reference(patch, material, reduced[NODES[-1]], elements_inside, hoop_bending, poisson)
+    _, kp_half = _reference(patch, material, reduced[NODES[-1]], elements_inside // 2,
+                            hoop_bending, poisson)
+    ref_kp = {k: getattr(kp, k) for k in KEYS}
+    row = {"d_mm": patch.diameter_mm, "fill": patch.fill, "reference": ref_kp,
+           "reference_converged": bool(ref.converged), "reference_residual": ref.residual,
+           "reference_self_error": {k: _rel(getattr(kp_half, k), ref_kp[k]) for k in KEYS},
+           "reduced": {}}
+    for n, sol in reduced.items():
+        rk = sol.keypoints
+        row["reduced"][str(n)] = {
+            "converged": bool(sol.converged),
+            **{k: getattr(rk, k) for k in KEYS},
+            **{f"rel_{k}": _rel(getattr(rk, k), ref_kp[k]) for k in KEYS}}
+    return row
+
+
+def _rel(value, reference):
+    return float((value - reference) / reference) if abs(reference) > 1e-9 else float("nan")
+
+
+def fem_check(designs=DEFAULT_DESIGNS, material: Material = DEFAULT_MATERIAL, **kw) -> dict:
+    rows = [check_design(Patch(d, p), material, **kw) for d, p in designs]
+    at300 = {k: max(abs(r["reduced"]["300"][f"rel_{k}"]) for r in rows) for k in KEYS}
+    return {"rows": rows, "max_rel_at_300": at300,
+            "targets": {k: {"limit": lim, "max": at300[k], "met": at300[k] <= lim}
+                        for k, lim in TARGETS.items()},
+            "elements_inside": kw.get("elements_inside", ELEMENTS_INSIDE)}
+
+
+def table(result: dict) -> str:
+    lines = [f"{'d_mm':>5} {'fill':>4} {'key':>6} {'reference':>9} " +
+             " ".join(f"{'N=' + str(n):>8}" for n in NODES) + f" {'ref.err':>8}"]
+    for r in result["rows"]:
+        for k in KEYS:
+            rel = " ".join(f"{100 * r['reduced'][str(n)]['rel_' + k]:+7.2f}%" for n in NODES)
+            lines.append(f"{r['d_mm']:5g} {r['fill']:4g} {k[:-3]:>6} {r['reference'][k]:9.3f} "
+                         f"{rel} {100 * r['reference_self_error'][k]:+7.2f}%")
+    lines.append("columns N=...: (reduced - reference) / reference; ref.err: the reference with "
+                 "half the elements against itself")
+    for k, t in result["targets"].items():
+        lines.append(f"{'PASS' if t['met'] else 'FAIL'}  {k} at N = 300 within {100 * t['limit']:g} %: "
+                     f"max {100 * t['max']:.2f} %")
+    return "\n".join(lines)
