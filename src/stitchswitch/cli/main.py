@@ -13,6 +13,7 @@ from stitchswitch.cli.force import force
 from stitchswitch.cli.inverse import inverse
 from stitchswitch.cli.precompute import precompute
 from stitchswitch.cli.simulate import simulate
+from stitchswitch.cli.switch_force import switch_force
 from stitchswitch.cli.validate import validate
 
 
@@ -52,3 +53,4 @@ cli.add_command(force)
 cli.add_command(validate)
 cli.add_command(calibrate)
 cli.add_command(fem_check_cmd)
+cli.add_command(switch_force)

@@ -188,7 +188,7 @@ class ShellModel:
             Hf = H[free][:, free].tocsc()
             scale = float(np.mean(np.abs(Hf.diagonal()))) or 1.0
             shift = shift / 10.0 if shift > 1e-12 * scale else 0.0
-            while True:
+            for _ in range(40):
                 A = Hf + shift * sp.identity(free.size, format="csc")
                 try:
                     d = -splu(A).solve(gf)
@@ -197,6 +197,8 @@ class ShellModel:
                 if d is not None and gf @ d < 0 and d @ (Hf @ d) > 0:
                     break
                 shift = max(10.0 * shift, 1e-8 * scale)
+            else:
+                break                                   # no descent direction: give up
             alpha, accepted = 1.0, False
             for _ in range(50):
                 trial = x.copy()
