@@ -25,3 +25,16 @@ def test_fem_check_small_patch_misses_the_h_target_and_says_so():
 def test_fem_check_bad_designs():
     result = CliRunner().invoke(cli, ["fem-check", "--designs", "40;0.8"])
     assert result.exit_code == 2 and "--designs" in result.output
+
+
+def test_fem_solve_writes_a_mesh_with_the_height(tmp_path):
+    import meshio
+
+    out = tmp_path / "dome.vtu"
+    result = CliRunner().invoke(cli, ["fem-solve", "-d", "50", "-p", "0.8", "--elements", "20",
+                                      "--mesh", str(out), "--json"])
+    assert result.exit_code == 0, result.output
+    res = json.loads(result.output)
+    assert res["converged"]
+    m = meshio.read(out)
+    assert abs((m.points[:, 2].max() - m.points[:, 2].min()) - res["h_mm"]) < 0.01

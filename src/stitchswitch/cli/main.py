@@ -9,6 +9,7 @@ from stitchswitch import __version__
 from stitchswitch.cli import options
 from stitchswitch.cli.calibrate import calibrate
 from stitchswitch.cli.fem_check import fem_check_cmd
+from stitchswitch.cli.fem_solve import fem_solve
 from stitchswitch.cli.force import force
 from stitchswitch.cli.inverse import inverse
 from stitchswitch.cli.precompute import precompute
@@ -54,3 +55,4 @@ cli.add_command(validate)
 cli.add_command(calibrate)
 cli.add_command(fem_check_cmd)
 cli.add_command(switch_force)
+cli.add_command(fem_solve)
