@@ -6,7 +6,8 @@ elements (C1, as the curvature needs second derivatives). The energy is the inte
 pointwise derivatives. Boundary conditions: r(0) = 0, z'(0) = 0 (pole), z(L) = 0 (gauge), with
 L the reduced model's domain (N - 1) dR. The mesh has a node on the embroidery boundary R_b
 (the coefficients jump there), ``elements_inside`` uniform elements on [0, R_b] and
-geometrically growing elements outside.
+geometrically growing elements outside; ``refine`` bisects every element that many times
+(nested meshes for convergence studies).
 
 The solve is Newton's method on the free dofs with an Armijo line search and a tenfold-growing
 diagonal shift when the Hessian is not positive definite; it starts from the reduced model's
@@ -64,7 +65,7 @@ class ShellSolution:
 class ShellModel:
     def __init__(self, patch: Patch, material: Material, *, elements_inside: int = 40,
                  growth: float = 1.08, hoop_bending: bool = False, poisson: float = 0.0,
-                 intorder: int = 6):
+                 intorder: int = 6, refine: int = 0):
         from skfem import Basis, ElementLineHermite, MeshLine
 
         grid = make_grid(patch, material)
@@ -72,6 +73,8 @@ class ShellModel:
         self.rb = patch.diameter_mm / (2.0 * material.eta)
         self.length = (material.n_nodes - 1) * grid.dr_mm
         nodes = shell_mesh_nodes(self.rb, self.length, elements_inside, growth)
+        for _ in range(refine):                    # nested uniform refinement (bisection)
+            nodes = np.sort(np.concatenate([nodes, 0.5 * (nodes[1:] + nodes[:-1])]))
         self.basis = Basis(MeshLine(nodes), ElementLineHermite(), intorder=intorder)
         b = self.basis
         self.nodes = nodes
