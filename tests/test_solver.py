@@ -166,3 +166,13 @@ def test_default_material_shows_the_papers_qualitative_findings():
     assert 12.0 <= big.h_mm <= 30.0                                   # the paper's magnitude
     assert big.b_rule == "neck" and big.r_b_mm < big.r_a_mm           # overhanging mushroom
     assert kp(40.0, 0.6).b_rule != "neck"                             # lower fill: no overhang
+
+
+def test_custom_terms_need_newton():
+    from stitchswitch import InvalidInputError
+    from stitchswitch.reduced.terms import ALL_TERMS
+
+    with pytest.raises(InvalidInputError, match="terms"):
+        solve(Patch(40.0, 0.8), solver="adam", terms=ALL_TERMS)
+    a, b = solve(Patch(40.0, 0.8)), solve(Patch(40.0, 0.8), terms=ALL_TERMS)
+    assert a.energy == b.energy

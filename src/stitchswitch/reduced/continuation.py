@@ -49,7 +49,7 @@ def seeded(z: np.ndarray, grid: Grid) -> np.ndarray:
     return np.maximum(z, bump) if z[0] < 0.5 * bump[0] else z
 
 
-def release(grid: Grid, *, tol: float, max_iter: int) -> tuple[newton.NewtonResult, int]:
+def release(grid: Grid, *, tol: float, max_iter: int, terms=None) -> tuple[newton.NewtonResult, int]:
     """Continuation from the flat state; returns the last Newton result and total iterations."""
     r, z = grid.R.copy(), np.zeros(grid.n_nodes)
     t, dt, used = 0.0, INITIAL_STEP, 0
@@ -59,7 +59,8 @@ def release(grid: Grid, *, tol: float, max_iter: int) -> tuple[newton.NewtonResu
         final = t_next >= 1.0
         budget = max_iter - used if final else min(STAGE_MAX_ITER, max_iter - used)
         result = newton.minimize(grid.with_lambda_scale(t_next), r, seeded(z, grid),
-                                 tol=tol if final else STAGE_TOL, max_iter=max(budget, 0))
+                                 tol=tol if final else STAGE_TOL, max_iter=max(budget, 0),
+                                 terms=terms)
         used += result.iterations
         if result.converged:
             if final:

@@ -129,10 +129,11 @@ def _escape(model, r, z, E, ab, dof_map):
 
 
 def minimize(grid: Grid, r0: np.ndarray, z0: np.ndarray, *, tol: float = 1e-10,
-             max_iter: int = 200) -> NewtonResult:
-    """Minimize the reduced energy from an admissible start (r0, z0), dR units."""
+             max_iter: int = 200, terms=None) -> NewtonResult:
+    """Minimize the reduced energy from an admissible start (r0, z0), dR units. ``terms``:
+    the energy terms (default: ``terms.ALL_TERMS``; variants and added effects go here)."""
     n = grid.n_nodes
-    model = assembly.Model(grid)
+    model = assembly.Model(grid) if terms is None else assembly.Model(grid, terms)
     r = np.array(r0, dtype=float)
     u = np.maximum(np.asarray(z0[:-1], float) - np.asarray(z0[1:], float), 0.0)
     u[0] = 0.0

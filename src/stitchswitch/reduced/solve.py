@@ -90,7 +90,7 @@ def _warm_profile(warm: Solution, grid) -> tuple[np.ndarray, np.ndarray]:
 
 def solve(patch: Patch, material: Material = DEFAULT_MATERIAL, *, solver: str = "newton",
           tol: float = DEFAULT_TOL, max_iter: int | None = None,
-          warm_start: Solution | None = None, **solver_options) -> Solution:
+          warm_start: Solution | None = None, terms=None, **solver_options) -> Solution:
     """Equilibrium profile of one design.
 
     ``solver="newton"`` (default): the certified projected Newton method, started from the
@@ -99,12 +99,16 @@ def solve(patch: Patch, material: Material = DEFAULT_MATERIAL, *, solver: str = 
     design's Solution) if given. If that does not converge, the release continuation of the
     rest metric is tried with the remaining budget. ``solver="adam"``: the paper's projected
     Adam with gradient clipping from the same released state; its result is certified the
-    same way and is usually *not* converged. ``max_iter`` bounds Newton
+    same way and is usually *not* converged. ``terms`` replaces the energy terms (Newton only;
+    default ``terms.ALL_TERMS``): discretization variants and added effects. ``max_iter``
+    bounds Newton
     iterations (default 500) or Adam steps (default 20000)."""
     if solver not in SOLVERS:
         raise InvalidInputError(f"solver: {solver!r} is not one of {', '.join(SOLVERS)}")
     if not (np.isfinite(tol) and tol > 0):
         raise InvalidInputError(f"tol: {tol!r} must be a positive number")
+    if terms is not None and solver != "newton":
+        raise InvalidInputError(f"terms: custom energy terms need solver='newton', not {solver!r}")
     grid = make_grid(patch, material)
     t0 = time.perf_counter()
     if solver == "newton":
@@ -112,16 +116,17 @@ def solve(patch: Patch, material: Material = DEFAULT_MATERIAL, *, solver: str = 
         result, used = None, 0
         if warm_start is not None:
             r0, z0 = _warm_profile(warm_start, grid)
-            result = newton.minimize(grid, r0, z0, tol=tol, max_iter=budget)
+            result = newton.minimize(grid, r0, z0, tol=tol, max_iter=budget, terms=terms)
             used = result.iterations
             if not result.converged:
                 result = None
         if result is None:
             result = newton.minimize(grid, *continuation.released_state(grid), tol=tol,
-                                     max_iter=max(budget - used, 0))
+                                     max_iter=max(budget - used, 0), terms=terms)
             used += result.iterations
         if not result.converged and used < budget:
-            result, more = continuation.release(grid, tol=tol, max_iter=budget - used)
+            result, more = continuation.release(grid, tol=tol, max_iter=budget - used,
+                                                terms=terms)
             used += more
     else:
         from stitchswitch.reduced import adam
