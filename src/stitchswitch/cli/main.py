@@ -11,7 +11,9 @@ from stitchswitch.cli.calibrate import calibrate
 from stitchswitch.cli.fem_check import fem_check_cmd
 from stitchswitch.cli.fem_solve import fem_solve
 from stitchswitch.cli.force import force
+from stitchswitch.cli.inspect_cmd import inspect
 from stitchswitch.cli.inverse import inverse
+from stitchswitch.cli.patch import patch
 from stitchswitch.cli.precompute import precompute
 from stitchswitch.cli.simulate import simulate
 from stitchswitch.cli.switch_force import switch_force
@@ -56,3 +58,5 @@ cli.add_command(calibrate)
 cli.add_command(fem_check_cmd)
 cli.add_command(switch_force)
 cli.add_command(fem_solve)
+cli.add_command(patch)
+cli.add_command(inspect)

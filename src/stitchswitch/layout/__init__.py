@@ -1,1 +1,1 @@
-"""Patch geometry, stitches, DXF import, placement, hoops, export. Not implemented yet: see issues 7-9."""
+"""Patch geometry (tessellation, patch_geometry), stitches (stitches, ordering), hoops, embroidery export (export) and previews (preview); docs/embroidery.md. DXF import and placement: later issues."""

@@ -1,0 +1,64 @@
+"""``stitchswitch patch``: tessellate a patch, plan its stitches, write an embroidery file."""
+from __future__ import annotations
+
+import click
+
+from stitchswitch.cli import options
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout import export, preview
+from stitchswitch.layout.hoops import choose_hoop
+from stitchswitch.layout.patch_geometry import make_patch, parse_selection
+from stitchswitch.layout.stitches import StitchParams, plan_stitches
+
+
+@click.command(cls=options.Command)
+@click.option("--diameter", "-d", "diameter_mm", type=options.FINITE_FLOAT, required=True,
+              metavar="MM", help="Patch diameter in mm on the pre-stretched (hooped) fabric.")
+@click.option("--fill", "-p", type=options.FINITE_FLOAT, required=True, metavar="P",
+              help="Fill fraction in (0, 1]: stitched area / patch area.")
+@click.option("--resolution", "resolution_mm", type=options.FINITE_FLOAT, default=5.0,
+              show_default=True, metavar="MM", help="Triangle side of the tessellation.")
+@click.option("--conductive", default=None, metavar="SPEC",
+              help="Triangles in a second (conductive) thread: index:I,J | ring:K,.. | "
+                   "annulus:INNER:OUTER | polygon:X,Y;X,Y;...")
+@click.option("--format", "fmt", default=None, metavar="FMT",
+              help="Embroidery format (default: from the -o extension): "
+                   + ", ".join(export.supported_formats()) + ".")
+@click.option("--hoop", default=None, metavar="NAME",
+              help="Hoop (SQ14b, RE20b, SQ20b, RE36b); default the smallest that fits.")
+@click.option("--row-spacing", "row_spacing_mm", type=options.FINITE_FLOAT, default=0.4,
+              show_default=True, metavar="MM", help="Tatami row spacing.")
+@click.option("--underlay", is_flag=True, help="Sew an edge-run underlay under every tatami piece.")
+@click.option("--output", "-o", type=click.Path(dir_okay=False), required=True, metavar="FILE")
+@click.option("--preview", "preview_path", type=click.Path(dir_okay=False), default=None,
+              metavar="FILE", help="Also write a stitch-plan preview (.png or .svg).")
+def patch(diameter_mm, fill, resolution_mm, conductive, fmt, hoop, row_spacing_mm, underlay,
+          output, preview_path):
+    """Write the embroidery file of one circular patch (hoop coordinates, centre at 0,0)."""
+    fmt_name = export.get_format(fmt).name if fmt else export.format_from_path(output).name
+    hoop_obj = choose_hoop(diameter_mm, diameter_mm, hoop)
+    if preview_path and not preview_path.lower().endswith((".png", ".svg")):
+        raise InvalidInputError(f"preview {preview_path!r} must end in .png or .svg")
+    selection = parse_selection(conductive) if conductive else None
+    geom = make_patch(diameter_mm, fill, resolution_mm, selection)
+    plan = plan_stitches(geom, StitchParams(row_spacing_mm=row_spacing_mm, underlay=underlay))
+    try:
+        export.write(output, plan, fmt_name, hoop_obj)
+        if preview_path:
+            preview.write_preview(preview_path, plan, diameter_mm)
+    except OSError as exc:
+        raise click.FileError(str(exc.filename or output), hint=exc.strerror or str(exc)) from None
+    rows = [
+        ("design", f"d = {diameter_mm:g} mm, fill = {fill:g}, resolution = {resolution_mm:g} mm"),
+        ("triangles", f"{geom.n_triangles} ({int(geom.conductive.sum())} conductive)"),
+        ("fill", f"{geom.achieved_fill:.4f} (scale {geom.scale:.4f})"),
+        ("stitches", str(plan.stitch_count)),
+        ("trims", str(plan.trim_count)),
+        ("colours", str(len(plan.threads))),
+        ("thread", f"{plan.thread_length_mm / 1000:.2f} m"),
+        ("time", f"{plan.sewing_time_min:.1f} min at {plan.stitches_per_minute:g} stitches/min"),
+        ("hoop", str(hoop_obj)),
+        ("file", f"{output} ({fmt_name})"),
+    ] + [("note", n) for n in plan.fabrication_notes()[1:] if len(plan.threads) > 1]
+    width = max(len(k) for k, _ in rows)
+    click.echo("\n".join(f"{k:<{width}}  {v}" for k, v in rows))

@@ -1,0 +1,53 @@
+import pytest
+from click.testing import CliRunner
+
+from decoders import dst, jef
+from stitchswitch.cli.main import cli
+
+
+def run(*args):
+    return CliRunner().invoke(cli, list(args))
+
+
+def test_patch_writes_jef_and_preview(tmp_path):
+    out, png = tmp_path / "patch.jef", tmp_path / "plan.png"
+    r = run("patch", "--diameter", "40", "--fill", "0.8", "--conductive", "ring:0,1",
+            "-o", str(out), "--preview", str(png))
+    assert r.exit_code == 0, r.output
+    assert "stitches   3288" in r.output and "fill       0.8000" in r.output
+    d = jef.decode(out.read_bytes())
+    assert d.count(dst.STITCH) == 3288 and d.count(dst.COLOR) == 1
+    assert d.header["hoop"] == 2                       # SQ14b -> code 2 (docs/embroidery.md)
+    assert png.read_bytes().startswith(b"\x89PNG")
+    first = out.read_bytes()
+    assert run("patch", "-d", "40", "-p", "0.8", "--conductive", "ring:0,1",
+               "-o", str(out)).exit_code == 0
+    assert out.read_bytes() == first
+
+
+def test_patch_format_option(tmp_path):
+    out = tmp_path / "p.bin"
+    r = run("patch", "-d", "30", "-p", "0.6", "--resolution", "4", "--format", "dst", "-o", str(out))
+    assert r.exit_code == 0, r.output
+    assert dst.decode(out.read_bytes()).records[-1][0] == dst.END
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--format", "xyz"], "unsupported embroidery format 'xyz'; supported: dst, exp, jef, pes, vp3"),
+    (["--diameter", "250"], "fits no hoop; the largest is RE36b 200 x 360 mm"),
+    (["--fill", "1.5"], "fill 1.5 is outside (0, 1]"),
+    (["--conductive", "blob:1"], "unknown selection 'blob:1'"),
+])
+def test_patch_errors(tmp_path, args, message):
+    out = tmp_path / "p.jef"
+    base = {"--diameter": "40", "--fill": "0.8"}
+    for k, v in zip(args[::2], args[1::2]):
+        base[k] = v
+    flat = [x for kv in base.items() for x in kv if kv[0] != "--format"]
+    if "--format" in base:
+        flat += ["--format", base["--format"]]
+    r = run("patch", *flat, "-o", str(out))
+    assert r.exit_code == 2
+    assert message in r.output and r.output.startswith("Error: ")
+    assert len(r.output.strip().splitlines()) == 1
+    assert not out.exists()

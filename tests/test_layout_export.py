@@ -1,0 +1,128 @@
+import math
+import pathlib
+
+import numpy as np
+import pyembroidery as pe
+import pytest
+
+from decoders import dst, jef
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout import export, preview
+from stitchswitch.layout import stitches as st
+from stitchswitch.layout.hoops import JANOME_550E_HOOPS, choose_hoop
+from stitchswitch.layout.patch_geometry import ByRing, make_patch
+
+STAR = pathlib.Path(__file__).resolve().parents[2] / "shared/data/external/embroidery"
+
+
+@pytest.fixture(scope="module")
+def plan():
+    return st.plan_stitches(make_patch(40.0, 0.8, 5.0, conductive=ByRing((0, 1))))
+
+
+@pytest.fixture(scope="module")
+def long_jump_plan():
+    """Two far-apart pieces: a 60 mm jump that every byte format must split."""
+    tri = np.array([[0.0, 0.0], [5.0, 0.0], [2.5, 4.33]])
+    b = st._Builder(st.StitchParams())
+    b.sew(st.fill_piece(tri, st.StitchParams()))
+    b.sew(st.fill_piece(tri + [60.0, 0.0], st.StitchParams()))
+    b.tie_off_and_trim()
+    b.add(st.END, b.xy[-1])
+    return st.StitchPlan(np.asarray(b.xy), np.asarray(b.cmd, dtype=np.int8),
+                         (st.NORMAL_THREAD,))
+
+
+def test_registry():
+    assert export.supported_formats() == ["dst", "exp", "jef", "pes", "vp3"]
+    with pytest.raises(InvalidInputError, match="supported: dst, exp, jef, pes, vp3"):
+        export.get_format("xxx")
+    assert export.format_from_path("a/b.JEF").name == "jef"
+
+
+def _check(decoded, plan, max_move):
+    planned = plan.xy_mm[plan.commands == st.STITCH]
+    assert decoded.count(dst.STITCH) == len(planned)
+    x0, y0, x1, y1 = decoded.extents()
+    ex = planned.min(axis=0), planned.max(axis=0)
+    np.testing.assert_allclose([x0 / 10, y0 / 10], ex[0], atol=0.1 + 1e-9)
+    np.testing.assert_allclose([x1 / 10, y1 / 10], ex[1], atol=0.1 + 1e-9)
+    for dx, dy in decoded.moves((dst.STITCH, dst.JUMP)):
+        assert math.hypot(dx, dy) <= max_move
+    assert decoded.records[-1][0] == dst.END
+
+
+@pytest.mark.parametrize("which", ["plan", "long_jump_plan"])
+def test_dst_decodes_independently(which, request):
+    p = request.getfixturevalue(which)
+    d = dst.decode(export.encode(p, "dst"))
+    _check(d, p, dst.MAX_MOVE)
+    assert d.count(dst.COLOR) == p.color_changes
+
+
+@pytest.mark.parametrize("which", ["plan", "long_jump_plan"])
+def test_jef_decodes_independently(which, request):
+    p = request.getfixturevalue(which)
+    d = jef.decode(export.encode(p, "jef", JANOME_550E_HOOPS[0]))
+    _check(d, p, jef.MAX_MOVE)
+    assert d.count(dst.COLOR) == p.color_changes
+    assert d.count(jef.TRIM) == p.trim_count          # the Janome trims are kept
+    assert d.header["hoop"] == 2 and d.header["date"] == export.JEF_FIXED_DATE
+
+
+def test_long_jump_is_split_not_truncated(long_jump_plan):
+    assert long_jump_plan.jump_count == 1 or long_jump_plan.jump_count == 2
+    d = dst.decode(export.encode(long_jump_plan, "dst"))
+    jumps = [m for m, r in zip(d.moves((dst.STITCH, dst.JUMP, dst.COLOR)), d.records)
+             if r[0] == dst.JUMP]
+    assert sum(1 for dx, dy in jumps if abs(dx) > 100) >= 5      # 60 mm in >= 5 jumps
+
+
+def test_jef_hoop_code_follows_chosen_hoop(plan):
+    codes = {h.name: jef.decode(export.encode(plan, "jef", h)).header["hoop"]
+             for h in JANOME_550E_HOOPS[:3]}
+    assert codes == {"SQ14b": 2, "RE20b": 2, "SQ20b": 4}
+
+
+@pytest.mark.parametrize("fmt", ["dst", "exp", "jef", "pes", "vp3"])
+def test_every_format_round_trips_through_pyembroidery(plan, fmt, tmp_path):
+    path = tmp_path / f"patch.{fmt}"
+    export.write(path, plan)
+    assert path.read_bytes() == export.encode(plan, fmt)      # byte-identical, deterministic
+    back = pe.read(str(path))
+    n = sum(1 for s in back.stitches if s[2] == pe.STITCH)
+    assert n == plan.stitch_count
+    x0, y0, x1, y1 = back.bounds()
+    e = plan.extents_mm()
+    assert (x1 - x0) / 10 == pytest.approx(e[2] - e[0], abs=0.15)
+    assert [p.name for p in tmp_path.iterdir()] == [f"patch.{fmt}"]   # no temp file left
+
+
+@pytest.mark.parametrize("name,mod", [("Star.DST", dst), ("Star.JEF", jef)])
+def test_decoders_agree_with_pyembroidery_on_external_star(name, mod):
+    d = mod.decode((STAR / name).read_bytes())
+    p = pe.read(str(STAR / name))
+    assert d.count(dst.STITCH) == sum(1 for s in p.stitches if s[2] == pe.STITCH)
+    x0, y0, x1, y1 = d.extents((dst.STITCH, dst.JUMP))
+    assert ((x1 - x0) / 10, (y1 - y0) / 10) == (pytest.approx(59.1), pytest.approx(62.3))
+    b = p.bounds()
+    assert (x1 - x0, y1 - y0) == (b[2] - b[0], b[3] - b[1])
+
+
+def test_hoop_choice():
+    assert choose_hoop(130, 130).name == "SQ14b"
+    assert choose_hoop(130, 190).name == "RE20b"
+    assert choose_hoop(190, 300).name == "RE36b"
+    with pytest.raises(InvalidInputError, match="largest is RE36b 200 x 360 mm"):
+        choose_hoop(220, 220)
+
+
+@pytest.mark.parametrize("fmt", ["png", "svg"])
+def test_preview(plan, fmt, tmp_path):
+    path = tmp_path / f"plan.{fmt}"
+    preview.write_preview(path, plan, 40.0)
+    data = path.read_bytes()
+    assert data.startswith(b"\x89PNG") if fmt == "png" else b"<svg" in data[:2000]
+    if fmt == "svg":
+        assert data == preview.render(plan, "svg", 40.0)
+        assert b"stroke-dasharray" in data          # the jumps
