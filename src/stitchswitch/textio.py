@@ -17,3 +17,21 @@ def read_text(path: str | os.PathLike, where: str, encoding: str = "utf-8-sig") 
         raise InvalidInputError(f"{where}: cannot be read ({exc.strerror or exc})") from None
     except UnicodeDecodeError as exc:
         raise InvalidInputError(f"{where}: is not UTF-8 text ({exc.reason} at byte {exc.start})") from None
+
+
+def csv_records(text: str):
+    """(source, records) of a CSV text with ``#`` comment lines: ``source`` is the text after
+    the first ``# source:`` comment (None if there is none) and ``records`` the list of
+    (line number, stripped cells) of the other non-blank lines, header included."""
+    import csv
+
+    source, records = None, []
+    for lineno, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if stripped.startswith("#"):
+            if source is None and stripped.startswith("# source:"):
+                source = stripped[len("# source:"):].strip()
+            continue
+        if stripped:
+            records.append((lineno, [c.strip() for c in next(csv.reader([line]))]))
+    return source, records

@@ -26,7 +26,6 @@ column: a missing column, a wrong field count, a value that is not a finite numb
 """
 from __future__ import annotations
 
-import csv
 import os
 from dataclasses import dataclass, fields
 from functools import lru_cache
@@ -36,7 +35,7 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.params import DIAMETER_RANGE_MM
-from stitchswitch.textio import read_text
+from stitchswitch.textio import csv_records, read_text
 
 __all__ = ["ForceModel", "ForceFit", "ForceSample", "fit_force_model", "load_force_csv",
            "parse_force_csv", "default_force_fit", "default_force_csv_path", "FEATURES"]
@@ -176,16 +175,9 @@ def _sample(fields_: dict[str, str], where: str) -> ForceSample:
 
 def parse_force_csv(text: str, name: str = "<text>") -> tuple[list[ForceSample], str]:
     """Rows and provenance of a force table given as text; ``name`` labels the errors."""
-    rows, header, source = [], None, None
-    for lineno, line in enumerate(text.splitlines(), start=1):
-        stripped = line.strip()
-        if stripped.startswith("#"):
-            if source is None and stripped.startswith("# source:"):
-                source = stripped[len("# source:"):].strip()
-            continue
-        if not stripped:
-            continue
-        cells = [c.strip() for c in next(csv.reader([line]))]
+    rows, header = [], None
+    source, records = csv_records(text)
+    for lineno, cells in records:
         where = f"force data {name}, line {lineno}"
         if header is None:
             missing = [c for c in REQUIRED_COLUMNS if c not in cells]

@@ -15,7 +15,6 @@ in (0, 200) mm, force_N >= 0); a split other than ``train``/``val``; a sample id
 """
 from __future__ import annotations
 
-import csv
 import dataclasses
 import hashlib
 import math
@@ -26,7 +25,7 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.params import DIAMETER_RANGE_MM
-from stitchswitch.textio import read_text
+from stitchswitch.textio import csv_records, read_text
 
 __all__ = ["Measurement", "MeasuredData", "QUANTITIES", "REQUIRED_COLUMNS", "OPTIONAL_COLUMNS",
            "SPLITS", "MAX_LENGTH_MM", "load_measurements", "parse_measurements"]
@@ -178,16 +177,9 @@ def parse_measurements(text: str, name: str = "<text>") -> MeasuredData:
     """Validate measured data given as text; ``name`` labels the errors and becomes ``path``.
     ``sha256`` is that of the text encoded as UTF-8."""
     label = f"measured data {name}"
-    rows, header, header_line, source, seen = [], None, 0, None, {}
-    for lineno, line in enumerate(text.splitlines(), start=1):
-        stripped = line.strip()
-        if stripped.startswith("#"):
-            if source is None and stripped.startswith("# source:"):
-                source = stripped[len("# source:"):].strip()
-            continue
-        if not stripped:
-            continue
-        cells = [c.strip() for c in next(csv.reader([line]))]
+    rows, header, header_line, seen = [], None, 0, {}
+    source, records = csv_records(text)
+    for lineno, cells in records:
         where = f"{label}, line {lineno}"
         if header is None:
             header, header_line = _header(cells, where), lineno
