@@ -35,3 +35,18 @@ def csv_records(text: str):
         if stripped:
             records.append((lineno, [c.strip() for c in next(csv.reader([line]))]))
     return source, records
+
+
+def csv_number(text: str, where: str, column: str) -> float:
+    """A finite float from a CSV cell; errors name ``where`` (file and line) and the column."""
+    import math
+
+    if text == "":
+        raise InvalidInputError(f"{where}, column {column}: the value is empty")
+    try:
+        value = float(text)
+    except ValueError:
+        raise InvalidInputError(f"{where}, column {column}: {text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise InvalidInputError(f"{where}, column {column}: {text!r} is not a finite number")
+    return value

@@ -35,7 +35,7 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.params import DIAMETER_RANGE_MM
-from stitchswitch.textio import csv_records, read_text
+from stitchswitch.textio import csv_number, csv_records, read_text
 
 __all__ = ["ForceModel", "ForceFit", "ForceSample", "fit_force_model", "load_force_csv",
            "parse_force_csv", "default_force_fit", "default_force_csv_path", "FEATURES"]
@@ -149,18 +149,8 @@ def fit_force_model(rows, source: str = "unspecified") -> ForceFit:
                     (float(d.min()), float(d.max())), (float(p.min()), float(p.max())))
 
 
-def _number(text: str, where: str, column: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise InvalidInputError(f"{where}, column {column}: {text!r} is not a number") from None
-    if not np.isfinite(value):
-        raise InvalidInputError(f"{where}, column {column}: {text!r} is not a finite number")
-    return value
-
-
 def _sample(fields_: dict[str, str], where: str) -> ForceSample:
-    d, p, f = (_number(fields_[c], where, c) for c in ("d_mm", "fill", "force_N"))
+    d, p, f = (csv_number(fields_[c], where, c) for c in ("d_mm", "fill", "force_N"))
     if not DIAMETER_RANGE_MM[0] <= d <= DIAMETER_RANGE_MM[1]:
         raise InvalidInputError(f"{where}, column d_mm: {d:g} is outside "
                                 f"[{DIAMETER_RANGE_MM[0]:g}, {DIAMETER_RANGE_MM[1]:g}] mm")

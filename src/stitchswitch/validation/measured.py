@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
-import math
 import os
 from dataclasses import dataclass
 
@@ -25,7 +24,7 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.params import DIAMETER_RANGE_MM
-from stitchswitch.textio import csv_records, read_text
+from stitchswitch.textio import csv_number, csv_records, read_text
 
 __all__ = ["Measurement", "MeasuredData", "QUANTITIES", "REQUIRED_COLUMNS", "OPTIONAL_COLUMNS",
            "SPLITS", "MAX_LENGTH_MM", "load_measurements", "parse_measurements"]
@@ -106,18 +105,6 @@ class MeasuredData:
         return np.stack(cols, axis=1) if cols[0].size else np.zeros((0, len(QUANTITIES)))
 
 
-def _number(text: str, where: str, column: str) -> float:
-    if text == "":
-        raise InvalidInputError(f"{where}, column {column}: the value is empty")
-    try:
-        value = float(text)
-    except ValueError:
-        raise InvalidInputError(f"{where}, column {column}: {text!r} is not a number") from None
-    if not math.isfinite(value):
-        raise InvalidInputError(f"{where}, column {column}: {text!r} is not a finite number")
-    return value
-
-
 def _check_range(value: float, where: str, column: str) -> None:
     lo, hi = DIAMETER_RANGE_MM
     if column == "d_mm":
@@ -160,13 +147,13 @@ def _row(cells: list[str], header: list[str], where: str, lineno: int) -> Measur
     f = dict(zip(header, cells))
     values = {}
     for c in REQUIRED_COLUMNS[:-1]:
-        values[c] = _number(f[c], where, c)
+        values[c] = csv_number(f[c], where, c)
         _check_range(values[c], where, c)
     if f["split"] not in SPLITS:
         raise InvalidInputError(f"{where}, column split: {f['split']!r} is not train or val")
     force = None
     if f.get("force_N", "") != "":
-        force = _number(f["force_N"], where, "force_N")
+        force = csv_number(f["force_N"], where, "force_N")
         if force < 0:
             raise InvalidInputError(f"{where}, column force_N: {force:g} is negative")
     return Measurement(**values, split=f["split"], sample_id=f.get("sample_id", ""),
