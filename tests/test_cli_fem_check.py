@@ -46,4 +46,4 @@ def test_variant_terms_attribute_the_gap():
     from stitchswitch import Patch
 
     row = check_design(Patch(25.0, 0.8))
-    assert abs(row["hoop_node_average_300"]["rel_h_mm"]) < 0.6 * abs(row["reduced"]["300"]["rel_h_mm"])
+    assert abs(row["hoop_node_average_300"]["rel_h_mm"]) < 0.75 * abs(row["reduced"]["300"]["rel_h_mm"])

@@ -1,7 +1,8 @@
 """The paper's discretization (section 4, "Discretization" and "Strain").
 
 N_in = ceil((d / 2 eta) / dR_max), dR = (d / 2 eta) / N_in, node N_in on the embroidery
-boundary; segment i inside iff i < N_in; lambda = 1 + (eta - 1) p^2 and
+boundary (the printed rule: tested with the small-patch refinement switched off, ``LITERAL``;
+the refinement N_in >= (N - 1) / domain_max_rb is tested on its own below); segment i inside iff i < N_in; lambda = 1 + (eta - 1) p^2 and
 k = k_emb p^2 + k_fab (1 - p^2) inside, lambda = 1 and k = k_fab outside; the bending hinge i
 (node i+1) uses the weight of segment i.
 """
@@ -13,8 +14,11 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.discretization import Grid, make_grid, n_inside
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Material, Patch
+from stitchswitch.reduced.discretization import Grid, make_grid, min_inside, n_inside
+from stitchswitch.reduced.params import DEFAULT_MATERIAL as SHIPPED, Material, Patch
+
+# The printed rule: the domain may be any number of patch radii (no small-patch refinement).
+DEFAULT_MATERIAL = SHIPPED.replace(domain_max_rb=1000.0)
 
 # Materials with other pre-stretches and spacings than the paper's eta = 1.7, dR_max = 0.5 mm.
 # n_nodes is large enough for every supported diameter.
@@ -280,3 +284,31 @@ def test_largest_patch_fits_default_material():
     assert grid.n_inside == 89
     assert grid.n_nodes == 300
     assert grid.n_nodes - 1 - grid.n_inside > 0     # there is fabric outside the patch
+
+
+# ------------------------------------------------------------ small-patch refinement
+
+@pytest.mark.parametrize("d", [10.0, 15.0, 20.0, 33.3, 50.0, 67.9, 68.1, 100.0, 150.0])
+@pytest.mark.parametrize("n_nodes", [75, 300, 600])
+def test_small_patches_get_a_finer_spacing_not_a_longer_domain(d, n_nodes):
+    material = SHIPPED.replace(n_nodes=n_nodes, dr_max_mm=0.5 * 300 / n_nodes)
+    grid = make_grid(Patch(d, 0.7), material)
+    printed = exact_n_inside(d, material.eta, material.dr_max_mm)
+    assert grid.n_inside == max(printed, min_inside(material))
+    rb = d / (2 * material.eta)
+    assert grid.dr_mm <= material.dr_max_mm * (1 + 1e-12)
+    assert (n_nodes - 1) * grid.dr_mm <= material.domain_max_rb * rb * (1 + 1e-12)
+    assert grid.n_inside * grid.dr_mm == pytest.approx(rb, rel=1e-12)
+
+
+def test_shipped_rule_values():
+    # N = 300, domain at most 7.5 R_b: at least ceil(299 / 7.5) = 40 nodes inside, which the
+    # printed rule reaches from d = 2 eta dR_max 40 = 68 mm on.
+    assert min_inside(SHIPPED) == 40
+    for d, expected in [(10.0, 40), (30.0, 40), (67.9, 40), (68.0, 40), (68.1, 41), (100.0, 59)]:
+        assert n_inside(Patch(d, 1.0), SHIPPED) == expected, d
+
+
+def test_domain_ratio_is_validated():
+    with pytest.raises(InvalidInputError, match="domain_max_rb"):
+        SHIPPED.replace(domain_max_rb=1.5)

@@ -28,7 +28,11 @@ def test_certified_solution_satisfies_constraints_and_kkt(solutions, dp):
     # the certificate, recomputed here from the gradient of the total energy
     grid = make_grid(Patch(*dp), DEFAULT_MATERIAL)
     g = assembly.gradient(r, z, grid)
-    assert kkt_residual(g[0::2], g[1::2], z[:-1] - z[1:]) == pytest.approx(sol.residual, abs=1e-13)
+    # (the profile went through mm and back: round-off of ~1e-16 relative in r and z, times the
+    # Hessian, which grows like dR^-2 for the finely resolved small patches)
+    recomputed = kkt_residual(g[0::2], g[1::2], z[:-1] - z[1:])
+    assert recomputed <= 1e-11
+    assert recomputed == pytest.approx(sol.residual, abs=5e-12)
     # and a finite-difference check that r is stationary (independent of the analytic gradient)
     E = assembly.energy(r, z, grid)
     for i in (1, grid.n_inside // 2, grid.n_inside, grid.n_inside + 3, grid.n_nodes - 1):

@@ -164,7 +164,7 @@ class ShellModel:
         (R, r, z, n_inside)."""
         n_in = max(int(np.ceil(self.rb / (spacing_mm or self.rb / 200.0))), 1)
         step = self.rb / n_in
-        R = np.arange(0.0, self.length + 1e-9, step)
+        R = np.minimum(np.arange(0.0, self.length + 1e-9, step), self.nodes[-1])
         probes = self.basis.probes(R[None, :])
         n = self.n
         return R, probes @ x[:n], probes @ x[n:], n_in

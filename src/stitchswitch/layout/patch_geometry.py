@@ -111,9 +111,15 @@ class PatchGeometry:
     pieces_mm: tuple[np.ndarray, ...]  # n convex CCW polygons: scaled triangles clipped to the circle
     conductive: np.ndarray            # (n,) bool: stitched in the second (conductive) thread
     areas_mm2: np.ndarray = field(repr=False)   # (n,) exact area of each piece
+    #: area of a non-circular outer boundary (``layout.patch_design``); None: the circle
+    outline_area_mm2: float | None = None
+    #: (n,) scale factor of each piece where regions differ (composite patches); None: ``scale``
+    piece_scale: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def patch_area_mm2(self) -> float:
+        if self.outline_area_mm2 is not None:
+            return self.outline_area_mm2
         return math.pi * self.diameter_mm ** 2 / 4.0
 
     @property

@@ -2,6 +2,13 @@
 
 Nodes i = 0..N-1 sit at R_i = i dR with dR = (d / 2 eta) / N_in and
 N_in = ceil((d / 2 eta) / dR_max), so node N_in lies exactly on the embroidery boundary.
+
+Small patches. Read literally, the rule gives a 15 mm patch 9 nodes inside and a fabric domain
+of 33 patch radii: the buckling of the patch is under-resolved (h moves by 10-300 % under
+refinement below d = 20 mm) while the far fabric is needlessly long. We therefore also require
+N_in >= (N - 1) / domain_max_rb (default 7.5): the domain is at most 7.5 R_b and a small patch
+gets a finer spacing, dR < dR_max, which the paper's "maximum spacing" allows. Patches with
+d >= 2 eta dR_max (N - 1) / 7.5 (68 mm at the defaults) are discretized exactly as printed.
 Everything here is in units of dR: R_i = i.
 
 Segment i joins nodes i and i+1 (i = 0..N-2). Segment i is *inside* the embroidery iff
@@ -82,17 +89,23 @@ def _ro(a: np.ndarray) -> np.ndarray:
     return a
 
 
+def min_inside(material: Material) -> int:
+    """The fewest nodes inside any patch: (N - 1) dR <= domain_max_rb R_b."""
+    return max(1, math.ceil((material.n_nodes - 1) / material.domain_max_rb - 1e-12))
+
+
 def n_inside(patch: Patch, material: Material) -> int:
-    """N_in = ceil((d / 2 eta) / dR_max), guarded against round-off at exact multiples."""
+    """N_in = max(ceil((d / 2 eta) / dR_max), min_inside(material)), guarded against round-off
+    at exact multiples."""
     ratio = patch.diameter_mm / (2.0 * material.eta) / material.dr_max_mm
     n = math.ceil(ratio - 1e-12)
-    return max(n, 1)
+    return max(n, min_inside(material))
 
 
 def n_inside_array(diameters_mm: np.ndarray, material: Material) -> np.ndarray:
     """``n_inside`` for an array of diameters (same rule, vectorized)."""
     ratio = np.asarray(diameters_mm, dtype=float) / (2.0 * material.eta) / material.dr_max_mm
-    return np.maximum(np.ceil(ratio - 1e-12), 1).astype(int)
+    return np.maximum(np.ceil(ratio - 1e-12), min_inside(material)).astype(int)
 
 
 def make_grid(patch: Patch, material: Material) -> Grid:

@@ -32,6 +32,13 @@ def _finite(name: str, value: float) -> float:
     return v
 
 
+def _integer(name: str, value) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) and not (
+            isinstance(value, float) and value.is_integer()):
+        raise InvalidInputError(f"{name}: {value!r} is not an integer")
+    return int(value)
+
+
 @dataclass(frozen=True)
 class Patch:
     """One circular patch: ``diameter_mm`` on the pre-stretched fabric, ``fill`` in (0, 1]."""
@@ -65,7 +72,10 @@ class Material:
 
     ``gamma_mm``: limit of the circumferential strain (Eq. 2, a length), where the fabric
     hardens. ``eta``: pre-stretch in the hoop. ``n_nodes``: N. ``dr_max_mm``: largest node
-    spacing. ``compression_ratio``: the slack regularization (``terms/compression.py``), the
+    spacing. ``domain_max_rb``: the fabric domain (N - 1) dR extends at most this many patch
+    radii R_b; a small patch gets a finer spacing instead of a larger domain, i.e.
+    N_in >= (N - 1) / domain_max_rb (``discretization.n_inside``; docs/design-map.md).
+    ``compression_ratio``: the slack regularization (``terms/compression.py``), the
     ratio of compressive to tensile radial stiffness near the rest length; 0 is the printed
     model, which has no minimizer for most designs (``docs/model.md``).
     """
@@ -82,6 +92,7 @@ class Material:
     n_nodes: int = 300
     dr_max_mm: float = 0.5
     compression_ratio: float = 1e-2
+    domain_max_rb: float = 7.5
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -101,13 +112,12 @@ class Material:
             raise InvalidInputError(f"dr_max_mm: {self.dr_max_mm!r} must be > 0")
         if not 0.0 < self.compression_ratio < 1.0:
             raise InvalidInputError(f"compression_ratio: {self.compression_ratio!r} is outside (0, 1)")
-        n = self.n_nodes
-        if isinstance(n, bool) or not isinstance(n, int) and not (isinstance(n, float) and n.is_integer()):
-            raise InvalidInputError(f"n_nodes: {n!r} is not an integer")
-        n = int(n)
+        n = _integer("n_nodes", self.n_nodes)
         if not 20 <= n <= 20000:
             raise InvalidInputError(f"n_nodes: {n!r} is outside [20, 20000]")
         object.__setattr__(self, "n_nodes", n)
+        if not 2.0 <= self.domain_max_rb <= 1000.0:
+            raise InvalidInputError(f"domain_max_rb: {self.domain_max_rb!r} is outside [2, 1000]")
 
     def replace(self, **changes) -> "Material":
         """A copy with some fields changed (validated again)."""
