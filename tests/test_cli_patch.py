@@ -51,3 +51,35 @@ def test_patch_errors(tmp_path, args, message):
     assert message in r.output and r.output.startswith("Error: ")
     assert len(r.output.strip().splitlines()) == 1
     assert not out.exists()
+
+
+STAR = "29,0;10,7;9,28;-8,11;-23,17;-12,0;-23,-17;-8,-11;9,-28;10,-7"
+
+
+def test_composite_patch_with_outline(tmp_path):
+    out = tmp_path / "c.jef"
+    r = run("patch", "-d", "60", "-p", "0.5", "--core", "20,1.0", "--outline", STAR,
+            "--conductive", "ring:0", "-o", str(out))
+    assert r.exit_code == 0, r.output
+    assert "surround 0.5, core 1.0" in r.output
+    d = jef.decode(out.read_bytes())
+    assert d.count(dst.COLOR) == 1 and d.count(dst.STITCH) > 1000
+    xs = [rec[1] for rec in d.records if rec[0] == dst.STITCH]
+    ys = [rec[2] for rec in d.records if rec[0] == dst.STITCH]
+    # 0.1 mm units: inside the star (x -23..29, y -28..28 mm) and spanning most of it
+    assert 400 <= max(xs) - min(xs) <= 522 and 450 <= max(ys) - min(ys) <= 560
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--outline", STAR], "a custom outline needs a composite core"),
+    (["--core", "20,1.0", "--outline", "40,0;0,20;-20,-20"], "beyond the bounding circle"),
+    (["--core", "70,1.0"], "core diameter 70 mm must be > 0 and below the diameter 60 mm"),
+    (["--core", "20"], "--core: '20' is not D,P"),
+    (["--core", "20,1.0", "--outline", "29,0;0,1;-29,0;0,-1"], "core disc (20 mm) is not inside the outline"),
+])
+def test_composite_errors(tmp_path, args, message):
+    out = tmp_path / "c.jef"
+    r = run("patch", "-d", "60", "-p", "0.5", *args, "-o", str(out))
+    assert r.exit_code == 2, r.output
+    assert message in r.output and len(r.output.strip().splitlines()) == 1
+    assert not out.exists()

@@ -8,12 +8,15 @@ import click
 from stitchswitch import __version__
 from stitchswitch.cli import options
 from stitchswitch.cli.calibrate import calibrate
+from stitchswitch.cli.check import check
 from stitchswitch.cli.fem_check import fem_check_cmd
 from stitchswitch.cli.fem_solve import fem_solve
 from stitchswitch.cli.force import force
+from stitchswitch.cli.import_cmd import import_cmd
 from stitchswitch.cli.inspect_cmd import inspect
 from stitchswitch.cli.inverse import inverse
 from stitchswitch.cli.patch import patch
+from stitchswitch.cli.place import place
 from stitchswitch.cli.precompute import precompute
 from stitchswitch.cli.simulate import simulate
 from stitchswitch.cli.switch_force import switch_force
@@ -60,3 +63,6 @@ cli.add_command(switch_force)
 cli.add_command(fem_solve)
 cli.add_command(patch)
 cli.add_command(inspect)
+cli.add_command(import_cmd)
+cli.add_command(place)
+cli.add_command(check)

@@ -7,6 +7,8 @@ from stitchswitch.cli import options
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout import export, preview
 from stitchswitch.layout.hoops import choose_hoop
+from stitchswitch.layout.design import CompositeSpec, PatchSpec
+from stitchswitch.layout.patch_design import geometry_for
 from stitchswitch.layout.patch_geometry import make_patch, parse_selection
 from stitchswitch.layout.stitches import StitchParams, plan_stitches
 
@@ -21,6 +23,12 @@ from stitchswitch.layout.stitches import StitchParams, plan_stitches
 @click.option("--conductive", default=None, metavar="SPEC",
               help="Triangles in a second (conductive) thread: index:I,J | ring:K,.. | "
                    "annulus:INNER:OUTER | polygon:X,Y;X,Y;...")
+@click.option("--core", "core", default=None, metavar="D,P",
+              help="Composite patch: a concentric core of diameter D mm stitched at fill P "
+                   "(e.g. a high-fill core in a low-fill surround).")
+@click.option("--outline", default=None, metavar="X,Y;X,Y;...",
+              help="Non-circular outer outline (mm, relative to the centre, inside the circle "
+                   "of --diameter); needs --core.")
 @click.option("--format", "fmt", default=None, metavar="FMT",
               help="Embroidery format (default: from the -o extension): "
                    + ", ".join(export.supported_formats()) + ".")
@@ -32,15 +40,19 @@ from stitchswitch.layout.stitches import StitchParams, plan_stitches
 @click.option("--output", "-o", type=click.Path(dir_okay=False), required=True, metavar="FILE")
 @click.option("--preview", "preview_path", type=click.Path(dir_okay=False), default=None,
               metavar="FILE", help="Also write a stitch-plan preview (.png or .svg).")
-def patch(diameter_mm, fill, resolution_mm, conductive, fmt, hoop, row_spacing_mm, underlay,
-          output, preview_path):
-    """Write the embroidery file of one circular patch (hoop coordinates, centre at 0,0)."""
+def patch(diameter_mm, fill, resolution_mm, conductive, core, outline, fmt, hoop, row_spacing_mm,
+          underlay, output, preview_path):
+    """Write the embroidery file of one patch (hoop coordinates, centre at 0,0): circular, or
+    composite (--core) with an optional non-circular outline (--outline)."""
     fmt_name = export.get_format(fmt).name if fmt else export.format_from_path(output).name
     hoop_obj = choose_hoop(diameter_mm, diameter_mm, hoop)
     if preview_path and not preview_path.lower().endswith((".png", ".svg")):
         raise InvalidInputError(f"preview {preview_path!r} must end in .png or .svg")
-    selection = parse_selection(conductive) if conductive else None
-    geom = make_patch(diameter_mm, fill, resolution_mm, selection)
+    if core is None and outline is None:
+        selection = parse_selection(conductive) if conductive else None
+        geom = make_patch(diameter_mm, fill, resolution_mm, selection)
+    else:
+        geom = geometry_for(_spec(diameter_mm, fill, conductive, core, outline), resolution_mm)
     plan = plan_stitches(geom, StitchParams(row_spacing_mm=row_spacing_mm, underlay=underlay))
     try:
         export.write(output, plan, fmt_name, hoop_obj)
@@ -51,7 +63,8 @@ def patch(diameter_mm, fill, resolution_mm, conductive, fmt, hoop, row_spacing_m
     rows = [
         ("design", f"d = {diameter_mm:g} mm, fill = {fill:g}, resolution = {resolution_mm:g} mm"),
         ("triangles", f"{geom.n_triangles} ({int(geom.conductive.sum())} conductive)"),
-        ("fill", f"{geom.achieved_fill:.4f} (scale {geom.scale:.4f})"),
+        ("fill", f"{geom.achieved_fill:.4f} (scale {geom.scale:.4f})" if core is None else
+                 f"{geom.achieved_fill:.4f} overall (surround {fill:g}, core {core.split(',')[1]})"),
         ("stitches", str(plan.stitch_count)),
         ("trims", str(plan.trim_count)),
         ("colours", str(len(plan.threads))),
@@ -62,3 +75,28 @@ def patch(diameter_mm, fill, resolution_mm, conductive, fmt, hoop, row_spacing_m
     ] + [("note", n) for n in plan.fabrication_notes()[1:] if len(plan.threads) > 1]
     width = max(len(k) for k, _ in rows)
     click.echo("\n".join(f"{k:<{width}}  {v}" for k, v in rows))
+
+
+def _numbers(text: str, what: str) -> list[float]:
+    try:
+        return [float(v) for v in text.split(",")]
+    except ValueError:
+        raise InvalidInputError(f"{what}: {text!r} is not a list of numbers") from None
+
+
+def _spec(diameter_mm, fill, conductive, core, outline) -> PatchSpec:
+    composite = None
+    if core is not None:
+        values = _numbers(core, "--core")
+        if len(values) != 2:
+            raise InvalidInputError(f"--core: {core!r} is not D,P (e.g. 20,1.0)")
+        if not 0.0 < values[1] <= 1.0:
+            raise InvalidInputError(f"--core: fill {values[1]:g} is outside (0, 1]")
+        composite = CompositeSpec(values[0], values[1])
+    points = None
+    if outline is not None:
+        points = [_numbers(p, "--outline") for p in outline.split(";") if p.strip()]
+        if any(len(p) != 2 for p in points):
+            raise InvalidInputError(f"--outline: {outline!r} is not X,Y;X,Y;...")
+    return PatchSpec("patch", "", (0.0, 0.0), diameter_mm, fill, composite=composite,
+                     outline_mm=points, conductive=conductive)

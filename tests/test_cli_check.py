@@ -1,0 +1,86 @@
+"""stitchswitch check: table and JSON, exit 0 clean / 1 violations / 2 bad input."""
+import json
+
+import pytest
+from click.testing import CliRunner
+
+from stitchswitch.cli.main import cli
+
+
+def run(*args):
+    return CliRunner().invoke(cli, [str(a) for a in args])
+
+
+@pytest.fixture
+def design(tmp_path):
+    path = tmp_path / "d.json"
+    assert run("import", "--rectangle", "300x200", "--name", "panel", "-o", path).exit_code == 0
+    assert run("place", path, "--piece", "panel", "--grid", "2x2", "--pitch", "40",
+               "-d", "40", "-p", "1").exit_code == 0
+    return path
+
+
+def test_clean_exit_0(design):
+    r = run("check", design)
+    assert r.exit_code == 0, r.output
+    assert r.output == "4 patch(es) on 1 piece(s): no violation\n"
+    out = json.loads(run("check", design, "--json").output)
+    assert out["clean"] is True and out["violations"] == [] and out["patches"] == 4
+    assert out["limits"]["seam_allowance_mm"] == 10.0 and out["limits"]["hoop_margin_mm"] is None
+
+
+def test_violations_exit_1_table_and_json(design):
+    assert run("place", design, "--piece", "panel", "--at", "30,30", "-d", "60", "-p", "0.8",
+               "--id-prefix", "pocket").exit_code == 0
+    r = run("check", design)
+    assert r.exit_code == 1
+    lines = r.output.splitlines()
+    assert lines[0].split()[:6] == ["severity", "rule", "patches", "pieces", "value", "mm"]
+    assert lines[1].split()[:5] == ["error", "piece-edge", "pocket1", "panel", "12.35"]
+    assert lines[2].split()[:5] == ["warning", "feature-gap", "pocket1", "panel", "0.31"]
+    assert lines[-1] == "5 patch(es) on 1 piece(s): 1 error(s), 1 warning(s)"
+    j = run("check", design, "--json")
+    assert j.exit_code == 1
+    out = json.loads(j.output)
+    assert out["errors"] == 1 and out["warnings"] == 1 and not out["clean"]
+    v = out["violations"][0]
+    assert v["rule"] == "piece-edge" and v["patches"] == ["pocket1"] and v["limit"] == 15.0
+    assert v["value"] == pytest.approx(30 - 30 / 1.7)
+
+
+def test_limit_options_change_the_result(design):
+    assert run("place", design, "--piece", "panel", "--at", "30,30", "-d", "60", "-p", "0.8",
+               "--id-prefix", "pocket").exit_code == 0
+    r = run("check", design, "--seam-allowance", "5", "--edge-clearance", "0", "--min-gap", "0.3")
+    assert r.exit_code == 0, r.output
+    r = run("check", design, "--min-spacing", "20", "--seam-allowance", "5",
+            "--edge-clearance", "0", "--min-gap", "0.3")
+    assert r.exit_code == 1 and "spacing" in r.output
+
+
+def test_geometry_violation_prints_no_value(tmp_path, design):
+    assert run("place", design, "--piece", "panel", "--at", "150,150", "-d", "20", "-p", "1",
+               "--conductive", "index:500").exit_code == 0
+    r = run("check", design, "--json")
+    v = json.loads(r.output)["violations"]
+    assert r.exit_code == 1 and v[0]["rule"] == "geometry" and v[0]["value"] is None
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--min-gap", "-1"], "min_gap_mm: -1.0 must be >= 0"),
+    (["--resolution", "nan"], "'nan' is not a finite number"),
+])
+def test_bad_limits_exit_2(design, args, message):
+    r = run("check", design, *args)
+    assert r.exit_code == 2 and message in r.output
+
+
+def test_bad_design_exit_2(tmp_path):
+    r = run("check", tmp_path / "none.json")
+    assert r.exit_code == 2 and "cannot be read" in r.output
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"version": 1, "pieces": [], "patches": [
+        {"id": "a", "piece": "x", "centre_mm": [0, 0], "diameter_mm": 40, "fill": 1.4}]}))
+    r = run("check", bad)
+    assert r.exit_code == 2 and "patches[0].piece: 'x' is not a piece" in r.output
+    assert "Traceback" not in r.output
