@@ -42,11 +42,12 @@ def geometry_for(spec, resolution_mm: float = 5.0) -> PatchGeometry:
     if composite is None and outline is None:
         return make_patch(spec.diameter_mm, spec.fill, resolution_mm, selection)
     radius = spec.diameter_mm / 2.0
+    if composite is not None and not 0 < composite.core_diameter_mm < spec.diameter_mm:
+        raise InvalidInputError(f"patch {spec.id}: core diameter {composite.core_diameter_mm:g} mm "
+                                f"must be > 0 and below the diameter {spec.diameter_mm:g} mm")
     if outline is not None:
-        boundary = shapely.Polygon(np.asarray(outline, dtype=float))
-        if not boundary.is_valid or boundary.area <= 0:
-            raise InvalidInputError(f"patch {spec.id}: outline_mm is not a simple polygon")
-        clip = _PolygonClip(boundary)
+        _check_outline(spec, np.asarray(outline, dtype=float), radius, composite)
+        clip = _PolygonClip(shapely.Polygon(np.asarray(outline, dtype=float)))
     else:
         clip = _DiskClip(radius)
     tris = tess.lattice_triangles(radius, resolution_mm)
@@ -87,6 +88,25 @@ def geometry_for(spec, resolution_mm: float = 5.0) -> PatchGeometry:
                          float(resolution_mm), float(np.max(scale)), lattice_centroids,
                          tuple(pieces), mask, areas, outline_area_mm2=float(clip.area),
                          piece_scale=scale[owner])
+
+
+def _check_outline(spec, outline: np.ndarray, radius: float, composite) -> None:
+    if composite is None:
+        raise InvalidInputError(f"patch {spec.id}: a custom outline needs a composite core "
+                                "(the circular functional element)")
+    if outline.ndim != 2 or outline.shape[1] != 2 or len(outline) < 3:
+        raise InvalidInputError(f"patch {spec.id}: outline_mm needs at least 3 (x, y) points")
+    boundary = shapely.Polygon(outline)
+    if not boundary.is_valid or boundary.area <= 0:
+        raise InvalidInputError(f"patch {spec.id}: outline_mm is not a simple polygon")
+    far = float(np.hypot(outline[:, 0], outline[:, 1]).max())
+    if far > radius * (1 + 1e-9):
+        raise InvalidInputError(f"patch {spec.id}: the outline reaches {far:.2f} mm from the centre, "
+                                f"beyond the bounding circle of diameter {2 * radius:g} mm")
+    core = shapely.Point(0.0, 0.0).buffer(composite.core_diameter_mm / 2.0, quad_segs=64)
+    if not boundary.buffer(1e-6).contains(core):
+        raise InvalidInputError(f"patch {spec.id}: the core disc ({composite.core_diameter_mm:g} mm) "
+                                "is not inside the outline")
 
 
 def _scaled(tris: np.ndarray, s: float) -> np.ndarray:
