@@ -18,6 +18,7 @@ from stitchswitch.cli.inverse import inverse
 from stitchswitch.cli.patch import patch
 from stitchswitch.cli.place import place
 from stitchswitch.cli.precompute import precompute
+from stitchswitch.cli.preview import preview
 from stitchswitch.cli.simulate import simulate
 from stitchswitch.cli.switch_force import switch_force
 from stitchswitch.cli.validate import validate
@@ -66,3 +67,4 @@ cli.add_command(inspect)
 cli.add_command(import_cmd)
 cli.add_command(place)
 cli.add_command(check)
+cli.add_command(preview)

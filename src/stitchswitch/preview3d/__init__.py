@@ -1,0 +1,17 @@
+"""3D preview of a design (issue 10): patch surfaces on the garment pieces, rendered offscreen.
+
+* ``spec``: what is previewed: pieces, patches (centre, d, fill, state) and the material; built
+  from a design file's ``Design`` by ``spec_from_design`` or directly.
+* ``profiles``: the equilibrium profile of every patch, from the design-space map (or a direct
+  solve outside the map's domain).
+* ``surfaces``: one patch's profile blended into the flat fabric, revolved and placed on the
+  garment, popped up or down.
+* ``fabric``: the flat pieces with the patch footprints cut out, triangulated.
+* ``scene``: all of it, plus the outlines as lines; merged into one mesh for export.
+* ``camera``, ``render``: offscreen pyvista rendering to PNG (pyvista is imported only there).
+* ``colours``: height colour map, or which patches violate the design constraints.
+* ``single``: the single-patch figure (profile, keypoints, dimensions) with matplotlib.
+* ``mesh_io``: mesh export through meshio (VTU, PLY, OBJ), atomic.
+
+Coordinates and the blend are documented in ``surfaces`` and in docs/preview.md.
+"""

@@ -1,0 +1,71 @@
+"""Colour maps of the preview: height, or the patches and pieces that violate the constraints.
+
+``height``: a diverging map (matplotlib's ``coolwarm``) symmetric about the flat fabric:
+clim = (-H, H) with H the largest |apex height|, so flat fabric is grey, popped-up patches red
+and popped-down ones blue.
+
+``violations``: the constraint check of the design (``layout.constraints.check_design``): the
+embroidered part of a patch (rest radius <= R_b) is red if an error names the patch, orange if
+only a warning does, green otherwise; its blend into the fabric stays grey. A piece named by a
+violation that names no patch (a problem of the piece itself) is tinted like its worst one,
+other fabric is grey.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from stitchswitch.errors import InvalidInputError
+
+COLOURS = ("height", "violations")
+HEIGHT_CMAP = "coolwarm"
+STATUS_RGB = {"ok": (44, 160, 44), "warning": (255, 158, 36), "error": (214, 39, 40)}
+FABRIC_RGB = {"ok": (217, 217, 217), "warning": (250, 222, 180), "error": (245, 190, 190)}
+_RANK = {"ok": 0, "warning": 1, "error": 2}
+
+
+def check_colour(colour: str) -> str:
+    if colour not in COLOURS:
+        raise InvalidInputError(f"color: {colour!r} is not one of " + ", ".join(COLOURS))
+    return colour
+
+
+def height_clim(scene) -> tuple[float, float]:
+    h = max([abs(p.height_mm) for p in scene.patches] + [1e-3])
+    return -h, h
+
+
+def status_from_violations(violations) -> tuple[dict, dict]:
+    """({patch id: status}, {piece name: status}) of the worst violation naming each."""
+    patches: dict[str, str] = {}
+    pieces: dict[str, str] = {}
+    for v in violations:
+        sev = v.severity if v.severity in _RANK else "error"
+        # a piece is tinted only by its own problems; a patch's problem colours the patch
+        for table, names in ((patches, v.patches), (pieces, () if v.patches else v.pieces)):
+            for name in names:
+                if _RANK[sev] > _RANK[table.get(name, "ok")]:
+                    table[name] = sev
+    return patches, pieces
+
+
+def design_status(design) -> tuple[dict, dict, list]:
+    """Run the design's constraint check; (patch status, piece status, violations)."""
+    try:
+        from stitchswitch.layout.constraints import check_design
+    except ImportError:
+        raise InvalidInputError("color 'violations': the constraint check "
+                                "(stitchswitch.layout.constraints) is not available") from None
+    violations = list(check_design(design))
+    patches, pieces = status_from_violations(violations)
+    return patches, pieces, violations
+
+
+def point_rgb(scene, patch_status: dict, piece_status: dict) -> np.ndarray:
+    """(n, 3) uint8 colour of every point of ``scene.merged()``."""
+    rows = [np.tile(FABRIC_RGB[piece_status.get(p.name, "ok")], (len(p.points), 1))
+            for p in scene.pieces]
+    for p in scene.patches:
+        inside = p.surface.rest_radius_mm <= p.profile.boundary_radius_mm * (1 + 1e-9)
+        rows.append(np.where(inside[:, None], STATUS_RGB[patch_status.get(p.id, "ok")],
+                             FABRIC_RGB["ok"]))
+    return np.vstack(rows).astype(np.uint8) if rows else np.zeros((0, 3), np.uint8)

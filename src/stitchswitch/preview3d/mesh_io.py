@@ -1,0 +1,33 @@
+"""Mesh export of a scene through meshio: VTU, PLY or OBJ, chosen by the extension, atomic.
+
+The exported mesh is ``Scene.merged()``: every piece and patch surface as triangles in garment
+mm. VTU and PLY carry the point data ``height_mm`` and ``patch_index`` (-1 on the flat fabric);
+OBJ has no place for them and carries the geometry only.
+"""
+from __future__ import annotations
+
+import os
+
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.revolution import write_mesh
+
+MESH_EXTENSIONS = (".vtu", ".ply", ".obj")
+
+
+def check_mesh_path(path) -> str:
+    path = os.fspath(path)
+    ext = os.path.splitext(path)[1].lower()
+    if ext not in MESH_EXTENSIONS:
+        raise InvalidInputError(f"mesh file {path!r}: unknown extension {ext or '(none)'!r}; "
+                                "use " + ", ".join(MESH_EXTENSIONS))
+    return ext
+
+
+def write_scene_mesh(path, scene) -> int:
+    """Write the merged mesh; returns its point count."""
+    ext = check_mesh_path(path)
+    points, tris, data = scene.merged()
+    if not len(tris):
+        raise InvalidInputError("mesh: the scene is empty (no pieces and no patches)")
+    write_mesh(path, points, tris, None if ext == ".obj" else data)
+    return len(points)

@@ -1,0 +1,150 @@
+"""Offscreen rendering of a scene with pyvista (VTK), to an RGB array or a PNG file.
+
+No display and no GPU are needed: ``pyvista.OFF_SCREEN`` is set and the plotter is created
+with ``off_screen=True``; VTK then renders through EGL or OSMesa (Mesa's software rasterizer on
+a machine without a GPU). pyvista is imported here only, and only when a scene is rendered.
+The PNG is encoded with Pillow (no metadata) and written atomically, so the same scene gives
+the same bytes on the same machine and VTK build.
+"""
+from __future__ import annotations
+
+import io
+import os
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+from stitchswitch.atomic import atomic_write_bytes
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.preview3d import colours
+from stitchswitch.preview3d.camera import Camera, check_view, fit_camera
+
+SIZE_RANGE = (64, 8192)
+BACKGROUND = "white"
+#: fraction of the width used by the scene; the rest holds the colour bar or legend
+USABLE = 0.84
+#: outlines are drawn this far (mm) towards the camera from the surface they lie on
+LINE_LIFT_MM = 0.5
+
+
+@dataclass(frozen=True)
+class RenderOptions:
+    view: str = "iso"
+    size: tuple[int, int] = (1200, 900)
+    colour: str = "height"
+    lighting: bool = True
+    legend: bool = True
+
+    def __post_init__(self) -> None:
+        check_view(self.view)
+        colours.check_colour(self.colour)
+        w, h = self.size
+        lo, hi = SIZE_RANGE
+        if not (lo <= w <= hi and lo <= h <= hi):
+            raise InvalidInputError(f"size: {w}x{h} is outside [{lo}, {hi}] pixels per side")
+
+
+def parse_size(text: str) -> tuple[int, int]:
+    """``"WxH"`` -> (W, H) pixels."""
+    m = re.fullmatch(r"\s*(\d+)\s*[xX]\s*(\d+)\s*", str(text))
+    if not m:
+        raise InvalidInputError(f"size: {text!r} must be WIDTHxHEIGHT in pixels, e.g. 1200x900")
+    size = (int(m.group(1)), int(m.group(2)))
+    RenderOptions(size=size)
+    return size
+
+
+def _pyvista():
+    import pyvista as pv
+    from vtkmodules.vtkCommonCore import vtkLogger
+
+    pv.OFF_SCREEN = True
+    if not os.environ.get("DISPLAY"):
+        # without a display VTK first tries X, warns "bad X server connection" and falls back
+        # to EGL/OSMesa; that warning is noise here (VTK's stderr log keeps errors only)
+        vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_ERROR)
+    return pv
+
+
+def _polylines(pv, lines):
+    pts = np.vstack([ln.points for ln in lines])
+    cells, start = [], 0
+    for ln in lines:
+        n = len(ln.points)
+        cells.append(np.concatenate([[n], np.arange(start, start + n)]))
+        start += n
+    return pv.PolyData(pts, lines=np.concatenate(cells))
+
+
+def render_scene(scene, options: RenderOptions = RenderOptions(), status=None):
+    """(image (H, W, 3) uint8, camera). ``status`` = (patch status, piece status) for the
+    violations colouring (``colours.design_status``)."""
+    pv = _pyvista()
+    w, h = options.size
+    usable = USABLE if options.legend else 1.0
+    camera = fit_camera(scene.all_points(), options.view, options.size, usable)
+    pl = pv.Plotter(off_screen=True, window_size=(w, h))
+    try:
+        # pyvista's default 8x MSAA doubles the time of a software (llvmpipe) render
+        pl.disable_anti_aliasing()
+        pl.set_background(BACKGROUND)
+        points, tris, data = scene.merged()
+        if len(tris):
+            mesh = pv.PolyData.from_regular_faces(points, tris)
+            if options.colour == "height":
+                mesh.point_data["height (mm)"] = data["height_mm"]
+                pl.add_mesh(mesh, scalars="height (mm)", cmap=colours.HEIGHT_CMAP,
+                            clim=colours.height_clim(scene), lighting=options.lighting,
+                            smooth_shading=options.lighting, show_scalar_bar=options.legend,
+                            scalar_bar_args=dict(title="height (mm)\n", vertical=True,
+                                                 position_x=0.87, position_y=0.12,
+                                                 width=0.05, height=0.7, color="black",
+                                                 fmt="%.1f", title_font_size=14,
+                                                 label_font_size=12))
+            else:
+                patch_status, piece_status = status if status is not None else ({}, {})
+                mesh.point_data["rgb"] = colours.point_rgb(scene, patch_status, piece_status)
+                pl.add_mesh(mesh, scalars="rgb", rgb=True, lighting=options.lighting,
+                            smooth_shading=options.lighting)
+                if options.legend:
+                    pl.add_legend([[k, np.array(v) / 255.0] for k, v in colours.STATUS_RGB.items()],
+                                  bcolor="white", border=True, loc="upper right",
+                                  size=(0.14, 0.14))
+        # lines lie on the surfaces; drawn LINE_LIFT_MM towards the camera so they are not
+        # hidden by the surface they lie on (the exported mesh has no lines)
+        towards = np.subtract(camera.position, camera.focal_point)
+        lift = LINE_LIFT_MM * towards / np.linalg.norm(towards)
+        for kind, colour, width in (("piece", "black", 2.0), ("patch", "#404040", 1.0)):
+            group = [ln for ln in scene.lines if ln.kind == kind]
+            if group:
+                lines = _polylines(pv, group)
+                lines.points = lines.points + lift
+                pl.add_mesh(lines, color=colour, line_width=width, lighting=False)
+        cam = pl.camera
+        cam.position, cam.focal_point, cam.up = camera.position, camera.focal_point, camera.view_up
+        pl.enable_parallel_projection()
+        cam.parallel_scale = camera.parallel_scale
+        pl.reset_camera_clipping_range()
+        image = np.array(pl.screenshot(return_img=True), dtype=np.uint8)
+    finally:
+        pl.close()
+    return image, camera
+
+
+def png_bytes(image: np.ndarray) -> bytes:
+    from PIL import Image
+
+    buf = io.BytesIO()
+    Image.fromarray(np.ascontiguousarray(image[:, :, :3])).save(buf, format="PNG")
+    return buf.getvalue()
+
+
+def write_png(path, image: np.ndarray) -> None:
+    atomic_write_bytes(path, png_bytes(image))
+
+
+def render_to_png(path, scene, options: RenderOptions = RenderOptions(), status=None) -> Camera:
+    image, camera = render_scene(scene, options, status)
+    write_png(path, image)
+    return camera

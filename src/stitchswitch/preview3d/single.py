@@ -1,0 +1,106 @@
+"""The single-patch figure: the profile, its keypoints and their dimensions (matplotlib).
+
+What a designer checks before stitching: the cross-section of the released patch (the model's
+profile, mirrored about the axis), the embroidered part drawn thick, the apex height h, the
+boundary point a = (r_a, z_a) dimensioned on the left half and the transition point
+b = (r_b, z_b) on the right half, with the flat far-field level z = 0. Horizontal positions are
+deformed radii r in mm on the relaxed fabric (garment frame); the caption gives d (pre-stretched),
+the relaxed footprint d / eta and the profile's source. "down" mirrors z.
+PNG or SVG by extension, written atomically and deterministically.
+"""
+from __future__ import annotations
+
+import io
+import os
+
+import numpy as np
+
+from stitchswitch.atomic import atomic_write_bytes
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.preview3d.profiles import PatchProfile
+
+FIGURE_FORMATS = (".png", ".svg")
+EXTENT = 2.2          # the figure shows rest radii up to EXTENT * R_b
+
+
+def check_figure_path(path) -> str:
+    path = os.fspath(path)
+    ext = os.path.splitext(path)[1].lower()
+    if ext not in FIGURE_FORMATS:
+        raise InvalidInputError(f"output {path!r}: unknown extension {ext or '(none)'!r}; "
+                                "use " + ", ".join(FIGURE_FORMATS))
+    return ext
+
+
+def _dimension(ax, p, q, text, offset=(0, 0), ha="center", va="center", at=0.5):
+    """A double arrow from p to q, labelled at fraction ``at`` of the way."""
+    ax.annotate("", xy=q, xytext=p, arrowprops=dict(arrowstyle="<->", lw=0.8, color="0.2",
+                                                    shrinkA=0, shrinkB=0))
+    mid = (p[0] + at * (q[0] - p[0]), p[1] + at * (q[1] - p[1]))
+    ax.annotate(text, xy=mid, xytext=offset, textcoords="offset points", ha=ha, va=va,
+                fontsize=8, color="0.1",
+                bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.85))
+
+
+def figure_bytes(profile: PatchProfile, fmt: str = "png", state: str = "up",
+                 material_name: str = "default", eta: float = 1.7) -> bytes:
+    import matplotlib
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    if state not in ("up", "down"):
+        raise InvalidInputError(f"state: {state!r} must be 'up' or 'down'")
+    sign = -1.0 if state == "down" else 1.0
+    kp, n_in = profile.keypoints, profile.n_inside
+    keep = profile.R_mm <= EXTENT * profile.boundary_radius_mm
+    r, z = profile.r_mm[keep], sign * profile.z_mm[keep]
+    h, ra, za, rb, zb = kp.h_mm, kp.r_a_mm, sign * kp.z_a_mm, kp.r_b_mm, sign * kp.z_b_mm
+    with matplotlib.rc_context({"svg.hashsalt": "stitchswitch", "svg.fonttype": "none"}):
+        span = float(r.max())
+        pad = 0.25 * max(h, 1.0)
+        ylo, yhi = min(0.0, sign * h) - pad, max(0.0, sign * h) + pad
+        height_in = min(6.0, max(2.4, 6.0 * (yhi - ylo) / (2.1 * span) + 1.2))
+        fig, ax = plt.subplots(figsize=(7.0, height_in), dpi=120)
+        for s in (-1.0, 1.0):
+            ax.plot(s * r, z, color="0.55", lw=1.0)
+            ax.plot(s * r[:n_in + 1], z[:n_in + 1], color="#b2182b", lw=2.6,
+                    label="embroidered" if s > 0 else None)
+        ax.axhline(0.0, color="0.7", lw=0.6, ls="--")
+        ax.plot([0], [sign * h], "o", color="k", ms=4)
+        ax.plot([-ra], [za], "s", color="#2166ac", ms=5, label="a (boundary)")
+        ax.plot([rb], [zb], "D", color="#1b7837", ms=5, label="b (transition)")
+        _dimension(ax, (0.0, 0.0), (0.0, sign * h), f"h = {h:.2f} mm", offset=(4, 0), ha="left",
+                   at=0.8)
+        _dimension(ax, (-ra, za), (0.0, za), f"r_a = {ra:.2f} mm",
+                   offset=(0, 6 * sign), va="bottom" if sign > 0 else "top")
+        _dimension(ax, (-ra - 0.12 * span, 0.0), (-ra - 0.12 * span, za), f"z_a = {abs(za):.2f} mm",
+                   offset=(-4, 0), ha="right")
+        _dimension(ax, (0.0, zb), (rb, zb), f"r_b = {rb:.2f} mm",
+                   offset=(0, -6 * sign), va="top" if sign > 0 else "bottom")
+        _dimension(ax, (rb + 0.12 * span, 0.0), (rb + 0.12 * span, zb), f"z_b = {abs(zb):.2f} mm",
+                   offset=(4, 0), ha="left")
+        ax.set_aspect("equal")
+        ax.set_xlim(-1.05 * span, 1.05 * span)
+        ax.set_ylim(ylo, yhi)
+        ax.set_xlabel("r (mm, relaxed fabric)")
+        ax.set_ylabel("z (mm)")
+        ax.set_title(f"d = {profile.diameter_mm:g} mm, fill = {profile.fill:g}, popped {state}",
+                     fontsize=10)
+        source = "design map" if profile.source == "map" else "direct solve"
+        caption = (f"material {material_name}; footprint d/eta = {profile.diameter_mm / eta:.1f} "
+                   f"mm relaxed; b rule: {kp.b_rule}; profile from the {source}")
+        ax.text(0.01, 0.02 if sign > 0 else 0.98, caption, transform=ax.transAxes, fontsize=7,
+                color="0.35", va="bottom" if sign > 0 else "top")
+        ax.legend(loc="upper right" if sign > 0 else "lower right", fontsize=7, frameon=False)
+        buf = io.BytesIO()
+        fmt_name = fmt.lstrip(".")
+        fig.savefig(buf, format=fmt_name, bbox_inches="tight", pad_inches=0.1,
+                    metadata={"Date": None} if fmt_name == "svg" else {"Software": None})
+        plt.close(fig)
+    return buf.getvalue()
+
+
+def write_figure(path, profile: PatchProfile, state: str = "up", material_name: str = "default",
+                 eta: float = 1.7) -> None:
+    ext = check_figure_path(path)
+    atomic_write_bytes(path, figure_bytes(profile, ext, state, material_name, eta))
