@@ -30,14 +30,14 @@ def test_clean_exit_0(design):
 
 
 def test_violations_exit_1_table_and_json(design):
-    assert run("place", design, "--piece", "panel", "--at", "30,30", "-d", "60", "-p", "0.8",
+    assert run("place", design, "--piece", "panel", "--at", "30,30", "-d", "60", "-p", "0.9",
                "--id-prefix", "pocket").exit_code == 0
     r = run("check", design)
     assert r.exit_code == 1
     lines = r.output.splitlines()
     assert lines[0].split()[:6] == ["severity", "rule", "patches", "pieces", "value", "mm"]
     assert lines[1].split()[:5] == ["error", "piece-edge", "pocket1", "panel", "12.35"]
-    assert lines[2].split()[:5] == ["warning", "feature-gap", "pocket1", "panel", "0.31"]
+    assert lines[2].split()[:5] == ["warning", "feature-gap", "pocket1", "panel", "0.15"]
     assert lines[-1] == "5 patch(es) on 1 piece(s): 1 error(s), 1 warning(s)"
     j = run("check", design, "--json")
     assert j.exit_code == 1

@@ -88,12 +88,14 @@ def test_feature_side():
 
 
 def test_feature_gap():
-    found = check_design(design(patch(fill=0.8)))
+    found = check_design(design(patch(fill=0.9)))
     assert rules(found) == ["feature-gap"]
     v = found[0]
-    assert v.severity == "warning" and v.value == pytest.approx(0.30, abs=0.01)
-    assert check_design(design(patch(fill=0.8)), CheckLimits(min_gap_mm=0.3)) == []
-    assert check_design(design(patch(fill=0.8)), CheckLimits(resolution_mm=20.0)) == []
+    assert v.severity == "warning" and v.value == pytest.approx(0.15, abs=0.01) and v.limit == 0.3
+    assert check_design(design(patch(fill=0.8))) == []                   # 0.30 mm gaps: fine
+    assert check_design(design(patch(fill=0.9)), CheckLimits(min_gap_mm=0.1)) == []
+    assert check_design(design(patch(fill=0.9)), CheckLimits(resolution_mm=20.0)) == []
+    assert rules(check_design(design(patch(fill=0.8)), CheckLimits(min_gap_mm=1.0))) == ["feature-gap"]
 
 
 def test_hoop_fit_largest_and_chosen_hoop():
@@ -114,7 +116,7 @@ def test_geometry_rule_reports_what_cannot_be_tessellated():
 
 
 def test_violation_record():
-    (v,) = check_design(design(patch(fill=0.8)))
+    (v,) = check_design(design(patch(fill=0.9)))
     assert isinstance(v, Violation)
     d = v.as_dict()
     assert list(d) == ["rule", "severity", "patches", "pieces", "value", "limit", "message"]

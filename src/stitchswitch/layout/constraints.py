@@ -47,7 +47,7 @@ class CheckLimits:
     seam_allowance_mm: float = 10.0
     edge_clearance_mm: float = 5.0
     min_spacing_mm: float = 5.0
-    min_gap_mm: float = 1.0
+    min_gap_mm: float = 0.3
     min_side_mm: float = 2.0
     hoop_margin_mm: float | None = None
     resolution_mm: float = 5.0
