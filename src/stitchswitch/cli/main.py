@@ -8,7 +8,9 @@ import click
 from stitchswitch import __version__
 from stitchswitch.cli import options
 from stitchswitch.cli.calibrate import calibrate
+from stitchswitch.cli.fabricate import fabricate_cmd
 from stitchswitch.cli.check import check
+from stitchswitch.cli.demo import demo
 from stitchswitch.cli.fem_check import fem_check_cmd
 from stitchswitch.cli.fem_solve import fem_solve
 from stitchswitch.cli.force import force
@@ -53,6 +55,7 @@ def cli(verbose: int, quiet: int) -> None:
     configure_logging(verbose - quiet)
 
 
+cli.add_command(demo)
 cli.add_command(simulate)
 cli.add_command(precompute)
 cli.add_command(inverse)
@@ -64,6 +67,7 @@ cli.add_command(switch_force)
 cli.add_command(fem_solve)
 cli.add_command(patch)
 cli.add_command(inspect)
+cli.add_command(fabricate_cmd, name="fabricate")
 cli.add_command(import_cmd)
 cli.add_command(place)
 cli.add_command(check)

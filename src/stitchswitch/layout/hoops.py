@@ -9,34 +9,20 @@ table (it compares 0.1 mm extents against mm sizes). Neither lists the 550E's SQ
 RE36b (200x360): SQ14b gets code 2 (the 140x200 hoop, the smallest coded hoop holding its whole
 field) and RE36b keeps ``None``, meaning "no published code": the writer then keeps pyembroidery's
 size-based code and logs a warning (docs/embroidery.md).
+
+The hoops, with their margins and frame widths, now come from the machine catalogue
+(``stitchswitch/data/machines.json``, read by ``layout.machines``; docs/fabrication.md);
+``Hoop`` lives in ``layout.hoop_spec`` and is re-exported here.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.hoop_spec import Hoop
+from stitchswitch.layout.machines import builtin_catalogue
 
+__all__ = ["Hoop", "JANOME_550E_HOOPS", "choose_hoop", "hoops_fitting"]
 
-@dataclass(frozen=True)
-class Hoop:
-    name: str
-    width_mm: float      # x extent of the sewing field
-    height_mm: float     # y extent of the sewing field
-    jef_code: int | None
-
-    def fits(self, width_mm: float, height_mm: float) -> bool:
-        return width_mm <= self.width_mm + 1e-9 and height_mm <= self.height_mm + 1e-9
-
-    def __str__(self) -> str:
-        return f"{self.name} {self.width_mm:g} x {self.height_mm:g} mm"
-
-
-JANOME_550E_HOOPS = (
-    Hoop("SQ14b", 140.0, 140.0, 2),
-    Hoop("RE20b", 140.0, 200.0, 2),
-    Hoop("SQ20b", 200.0, 200.0, 4),
-    Hoop("RE36b", 200.0, 360.0, None),
-)
+JANOME_550E_HOOPS: tuple[Hoop, ...] = builtin_catalogue().machine("janome-550e").hoops
 
 
 def hoops_fitting(width_mm: float, height_mm: float, hoops=JANOME_550E_HOOPS) -> list[Hoop]:
