@@ -57,3 +57,18 @@ def test_query_accuracy_against_direct_solves(dmap):
         kp = solve(Patch(d, p)).keypoints
         assert abs(q.h_mm[0] - kp.h_mm) <= max(0.01 * kp.h_mm, 0.05), (d, p)
         checked += 1
+
+
+def test_coarse_map_for_another_material_is_built_once_and_cached(tmp_path, monkeypatch):
+    from stitchswitch.reduced.map_cache import COARSE_DIAMETERS_MM, COARSE_FILLS
+
+    monkeypatch.setenv("STITCHSWITCH_CACHE", str(tmp_path))
+    other = DEFAULT_MATERIAL.replace(w_b_emb=12.0)
+    m = map_for(other, coarse=True)
+    assert m.h_mm.shape == (COARSE_DIAMETERS_MM.size, COARSE_FILLS.size) == (18, 11)
+    assert m.material_hash == material_hash(other) and m.converged.all()
+    (cached,) = (tmp_path / "maps").glob("*-coarse.npz")
+    assert np.array_equal(map_for(other, coarse=True).h_mm, m.h_mm)
+    assert map_for(DEFAULT_MATERIAL, coarse=True) is default_map()     # the shipped map wins
+    i, j = 5, 6                                                        # d 40, p 0.8
+    assert m.h_mm[i, j] == pytest.approx(solve(Patch(40.0, 0.8), other).keypoints.h_mm, abs=1e-9)

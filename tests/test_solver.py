@@ -180,3 +180,23 @@ def test_custom_terms_need_newton():
         solve(Patch(40.0, 0.8), solver="adam", terms=ALL_TERMS)
     a, b = solve(Patch(40.0, 0.8)), solve(Patch(40.0, 0.8), terms=ALL_TERMS)
     assert a.energy == b.energy
+
+
+def test_solve_runs_on_one_blas_thread_and_restores_the_callers_setting(monkeypatch):
+    from threadpoolctl import threadpool_info
+
+    from stitchswitch.reduced import banded
+
+    seen = []
+    real = banded.cholesky
+
+    def spy(ab, shift=0.0):
+        seen.append(max((p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"),
+                        default=1))
+        return real(ab, shift)
+
+    before = [(p["filepath"], p["num_threads"]) for p in threadpool_info()]
+    monkeypatch.setattr(banded, "cholesky", spy)
+    solve(Patch(40.0, 0.8))
+    assert seen and set(seen) == {1}
+    assert [(p["filepath"], p["num_threads"]) for p in threadpool_info()] == before

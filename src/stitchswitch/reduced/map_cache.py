@@ -14,6 +14,8 @@ from functools import lru_cache
 from importlib import resources
 from pathlib import Path
 
+import numpy as np
+
 from stitchswitch.reduced.design_map import DesignMap
 from stitchswitch.reduced.params import DEFAULT_MATERIAL, Material
 
@@ -35,8 +37,17 @@ def cache_dir() -> Path:
     return Path(os.environ.get("STITCHSWITCH_CACHE") or Path.home() / ".cache" / "stitchswitch")
 
 
-def map_for(material: Material = DEFAULT_MATERIAL, workers: int = 1, progress=None) -> DesignMap:
-    """The default-grid map of ``material``: shipped, cached, or built now and cached."""
+#: The coarse grid of ``map_for(..., coarse=True)``: d every 5 mm, p every 0.05 (18 x 11).
+COARSE_DIAMETERS_MM = np.arange(15.0, 100.0 + 1e-9, 5.0)
+COARSE_FILLS = np.round(np.arange(0.5, 1.0 + 1e-9, 0.05), 2)
+
+
+def map_for(material: Material = DEFAULT_MATERIAL, workers: int = 1, progress=None,
+            coarse: bool = False) -> DesignMap:
+    """The default-grid map of ``material``: shipped, cached, or built now and cached. With
+    ``coarse``, a material whose full map is neither shipped nor cached gets the coarse grid
+    instead (``COARSE_*``, 198 solves, a few seconds, no smoothness check; cached too): enough
+    for a figure."""
     from stitchswitch.reduced import map_io, precompute
     from stitchswitch.reduced.material_io import material_hash
 
@@ -45,7 +56,15 @@ def map_for(material: Material = DEFAULT_MATERIAL, workers: int = 1, progress=No
     path = cache_dir() / "maps" / f"{material_hash(material)}.npz"
     if path.exists():
         return map_io.load_map(path)
-    dmap = precompute.build(material, workers=workers, progress=progress)
+    if coarse:
+        path = cache_dir() / "maps" / f"{material_hash(material)}-coarse.npz"
+        if path.exists():
+            return map_io.load_map(path)
+        # no smoothness check: on a 5 mm x 0.05 grid the 2 % neighbour test does not apply
+        dmap = precompute.build(material, COARSE_DIAMETERS_MM, COARSE_FILLS, workers=workers,
+                                progress=progress, check=False)
+    else:
+        dmap = precompute.build(material, workers=workers, progress=progress)
     path.parent.mkdir(parents=True, exist_ok=True)
     map_io.save_map(dmap, path)
     return dmap

@@ -91,7 +91,7 @@ def _warm_profile(warm: Solution, grid) -> tuple[np.ndarray, np.ndarray]:
 def solve(patch: Patch, material: Material = DEFAULT_MATERIAL, *, solver: str = "newton",
           tol: float = DEFAULT_TOL, max_iter: int | None = None,
           warm_start: Solution | None = None, terms=None, **solver_options) -> Solution:
-    """Equilibrium profile of one design.
+    """Equilibrium profile of one design (with one BLAS thread: ``stitchswitch.blas``).
 
     ``solver="newton"`` (default): the certified projected Newton method, started from the
     released state (``continuation.released_state``: the flat hoop state with a small upward
@@ -103,6 +103,15 @@ def solve(patch: Patch, material: Material = DEFAULT_MATERIAL, *, solver: str = 
     default ``terms.ALL_TERMS``): discretization variants and added effects. ``max_iter``
     bounds Newton
     iterations (default 500) or Adam steps (default 20000)."""
+    from stitchswitch.blas import one_thread
+
+    with one_thread():
+        return _solve(patch, material, solver=solver, tol=tol, max_iter=max_iter,
+                      warm_start=warm_start, terms=terms, **solver_options)
+
+
+def _solve(patch: Patch, material: Material, *, solver: str, tol: float, max_iter: int | None,
+           warm_start: Solution | None, terms, **solver_options) -> Solution:
     if solver not in SOLVERS:
         raise InvalidInputError(f"solver: {solver!r} is not one of {', '.join(SOLVERS)}")
     if not (np.isfinite(tol) and tol > 0):

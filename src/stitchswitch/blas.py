@@ -1,0 +1,25 @@
+"""One BLAS thread for the small banded LAPACK calls of the solvers.
+
+A solve factors a banded matrix of a few hundred rows some 20-50 times; threads cannot speed
+that up, but a multithreaded OpenBLAS whose threads spin while the machine is busy slows it
+down by 40x and more (measured: a 10 ms solve took 200-800 ms with other processes running).
+``one_thread()`` limits the BLAS thread pools for the duration of a block; the controller is
+built once (its context costs about 0.04 ms), and the caller's own setting is restored after.
+"""
+from __future__ import annotations
+
+from contextlib import contextmanager
+from functools import lru_cache
+
+
+@lru_cache(maxsize=1)
+def _controller():
+    from threadpoolctl import ThreadpoolController
+
+    return ThreadpoolController()
+
+
+@contextmanager
+def one_thread():
+    with _controller().limit(limits=1, user_api="blas"):
+        yield
