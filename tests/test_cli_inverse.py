@@ -1,5 +1,7 @@
 import json
 
+import pytest
+
 from click.testing import CliRunner
 
 from stitchswitch.cli.main import cli
@@ -34,3 +36,30 @@ def test_bad_options_exit_2():
         result = CliRunner().invoke(cli, ["inverse", *args])
         assert result.exit_code == 2, (args, result.output)
         assert "Traceback" not in result.output
+
+
+def test_inverse_on_a_given_map_uses_its_material(tmp_path):
+    import numpy as np
+
+    from stitchswitch.reduced import map_io, precompute
+    from stitchswitch.reduced.params import DEFAULT_MATERIAL
+
+    other = DEFAULT_MATERIAL.replace(w_b_emb=12.0)
+    small = precompute.build(other, np.arange(40.0, 46.0), np.round(np.arange(0.7, 0.86, 0.05), 2),
+                             check=False)
+    path = tmp_path / "m.npz"
+    map_io.save_map(small, path)
+    r = CliRunner().invoke(cli, ["inverse", "--height", "12", "--map", str(path), "--count", "1",
+                                 "--json"])
+    assert r.exit_code == 0, r.output
+    (c,) = json.loads(r.output)["candidates"]
+    assert 40 <= c["d_mm"] <= 45
+    from stitchswitch import Patch, solve
+    assert solve(Patch(c["d_mm"], c["fill"]), other).keypoints.h_mm == pytest.approx(c["h_mm"], abs=1e-9)
+    assert abs(c["h_mm"] - 12.0) <= 0.2
+
+
+def test_inverse_material_and_map_together_is_an_error(tmp_path):
+    r = CliRunner().invoke(cli, ["inverse", "--height", "12", "--map", "x.npz",
+                                 "--material", "y.json"])
+    assert r.exit_code == 2 and "give --material or --map, not both" in r.output

@@ -22,17 +22,22 @@ from stitchswitch.reduced.inverse import HEIGHT_TOL_MM, InverseTarget, inverse_d
               metavar="LO HI", help="Allowed switching force window in N.")
 @click.option("--count", type=click.IntRange(min=1, max=50), default=5, show_default=True,
               help="Number of alternative designs.")
+@options.material_opt
+@click.option("--map", "map_path", type=click.Path(dir_okay=False), default=None, metavar="FILE",
+              help="A design-space map from `stitchswitch precompute` (its material is used).")
 @options.json_opt
-def inverse(height_mm, radius_mm, max_diameter_mm, min_fill, force_range, count, as_json):
+def inverse(height_mm, radius_mm, max_diameter_mm, min_fill, force_range, count, material_path,
+            map_path, as_json):
     """Suggest distinct (d, fill) designs whose certified height meets the target.
 
     Candidates come from the design-space map, are chosen by a mixed-integer program (HiGHS)
     under the bounds, refined on the map and confirmed by direct solves. An unreachable target
-    exits 2 with the achievable range.
+    exits 2 with the achievable range. The map is the shipped one (default material), the one
+    of --material (built once, about half a minute on 2 cores, then cached), or --map.
     """
     target = InverseTarget(height_mm, radius_mm, max_diameter_mm, min_fill,
                            tuple(force_range) if force_range else None, count)
-    result = inverse_design(target)
+    result = inverse_design(target, _map(material_path, map_path))
     cands = [c.as_dict() for c in result.candidates]
     if as_json:
         click.echo(json.dumps({
@@ -61,3 +66,34 @@ def inverse(height_mm, radius_mm, max_diameter_mm, min_fill, force_range, count,
         click.echo(f"force_N: the polynomial model of {fit.source.split('(')[0].strip() or 'the data'} "
                    f"data; rows outside its design range (d {d0:g}-{d1:g} mm, fill {p0:g}-{p1:g}) "
                    "are extrapolated")
+
+
+def _map(material_path, map_path):
+    from stitchswitch.errors import InvalidInputError
+    from stitchswitch.reduced import map_cache
+
+    if material_path is not None and map_path is not None:
+        raise InvalidInputError("give --material or --map, not both (a map carries its material)")
+    if map_path is not None:
+        from stitchswitch.reduced.map_io import load_map
+
+        return load_map(map_path)
+    if material_path is None:
+        return None
+    from stitchswitch.reduced.material_io import load_material
+
+    material = load_material(material_path)
+    if material == map_cache.DEFAULT_MATERIAL:
+        return None
+    import os
+
+    from stitchswitch.reduced.precompute import DEFAULT_DIAMETERS_MM
+
+    with click.progressbar(length=DEFAULT_DIAMETERS_MM.size, file=click.get_text_stream("stderr"),
+                           label="map of this material (built once, then cached)") as bar:
+        done = [0]
+
+        def progress(n):
+            bar.update(n - done[0])
+            done[0] = n
+        return map_cache.map_for(material, workers=max(1, os.cpu_count() or 1), progress=progress)
