@@ -7,11 +7,28 @@ as in the paper). The reduced model works internally in units of the node spacin
 """
 from stitchswitch.errors import StitchSwitchError, InvalidInputError
 from stitchswitch.reduced.params import Material, Patch, DEFAULT_MATERIAL
-from stitchswitch.reduced.solve import solve, Solution
-from stitchswitch.reduced.keypoints import keypoints, Keypoints
 
 __version__ = "0.1.0"
 __all__ = [
     "StitchSwitchError", "InvalidInputError", "Material", "Patch", "DEFAULT_MATERIAL",
     "solve", "Solution", "keypoints", "Keypoints", "__version__",
 ]
+
+# The solver pulls in the compiled (numba) energy kernels, about 0.6 s of import time; it is
+# imported on first use, so that commands that never solve (check, fabricate, ...) start fast.
+_LAZY = {"solve": "stitchswitch.reduced.solve", "Solution": "stitchswitch.reduced.solve",
+         "keypoints": "stitchswitch.reduced.keypoints", "Keypoints": "stitchswitch.reduced.keypoints"}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        from importlib import import_module
+
+        value = getattr(import_module(_LAZY[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'stitchswitch' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))

@@ -7,23 +7,42 @@ import click
 
 from stitchswitch import __version__
 from stitchswitch.cli import options
-from stitchswitch.cli.calibrate import calibrate
-from stitchswitch.cli.fabricate import fabricate_cmd
-from stitchswitch.cli.check import check
-from stitchswitch.cli.demo import demo
-from stitchswitch.cli.fem_check import fem_check_cmd
-from stitchswitch.cli.fem_solve import fem_solve
-from stitchswitch.cli.force import force
-from stitchswitch.cli.import_cmd import import_cmd
-from stitchswitch.cli.inspect_cmd import inspect
-from stitchswitch.cli.inverse import inverse
-from stitchswitch.cli.patch import patch
-from stitchswitch.cli.place import place
-from stitchswitch.cli.precompute import precompute
-from stitchswitch.cli.preview import preview
-from stitchswitch.cli.simulate import simulate
-from stitchswitch.cli.switch_force import switch_force
-from stitchswitch.cli.validate import validate
+
+#: Subcommand name -> "module:attribute". A subcommand's module is imported only when that
+#: subcommand runs (or help lists it), so that e.g. ``check`` does not load the solver, the
+#: FEM code and pyvista (click's documented lazy-loading pattern).
+COMMANDS = {
+    "demo": "demo:demo",
+    "simulate": "simulate:simulate",
+    "precompute": "precompute:precompute",
+    "inverse": "inverse:inverse",
+    "force": "force:force",
+    "validate": "validate:validate",
+    "calibrate": "calibrate:calibrate",
+    "fem-check": "fem_check:fem_check_cmd",
+    "switch-force": "switch_force:switch_force",
+    "fem-solve": "fem_solve:fem_solve",
+    "patch": "patch:patch",
+    "inspect": "inspect_cmd:inspect",
+    "fabricate": "fabricate:fabricate_cmd",
+    "import": "import_cmd:import_cmd",
+    "place": "place:place",
+    "check": "check:check",
+    "preview": "preview:preview",
+}
+
+
+class LazyGroup(options.Group):
+    def list_commands(self, ctx):
+        return list(COMMANDS)
+
+    def get_command(self, ctx, name):
+        if name not in COMMANDS:
+            return None
+        from importlib import import_module
+
+        module, attr = COMMANDS[name].split(":")
+        return getattr(import_module(f"stitchswitch.cli.{module}"), attr)
 
 
 class _EchoHandler(logging.Handler):
@@ -45,7 +64,7 @@ def configure_logging(verbosity: int) -> None:
         logger.addHandler(_EchoHandler())
 
 
-@click.group(cls=options.Group)
+@click.group(cls=LazyGroup)
 @click.version_option(__version__, "--version", prog_name="stitchswitch")
 @options.verbose_opt
 @options.quiet_opt
@@ -53,22 +72,3 @@ def cli(verbose: int, quiet: int) -> None:
     """Bistable embroidered textiles: simulate a circular embroidered patch with the reduced
     model. Lengths are in mm; diameters are measured on the pre-stretched fabric."""
     configure_logging(verbose - quiet)
-
-
-cli.add_command(demo)
-cli.add_command(simulate)
-cli.add_command(precompute)
-cli.add_command(inverse)
-cli.add_command(force)
-cli.add_command(validate)
-cli.add_command(calibrate)
-cli.add_command(fem_check_cmd)
-cli.add_command(switch_force)
-cli.add_command(fem_solve)
-cli.add_command(patch)
-cli.add_command(inspect)
-cli.add_command(fabricate_cmd, name="fabricate")
-cli.add_command(import_cmd)
-cli.add_command(place)
-cli.add_command(check)
-cli.add_command(preview)

@@ -12,8 +12,7 @@ import pathlib
 import click
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.params import DIAMETER_RANGE_MM
-from stitchswitch.reduced.solve import SOLVERS
+from stitchswitch.reduced.params import DIAMETER_RANGE_MM, SOLVERS
 
 
 class InputError(click.ClickException):

@@ -16,6 +16,9 @@ from dataclasses import dataclass, fields
 
 from stitchswitch.errors import InvalidInputError
 
+#: The solvers of ``reduced.solve`` (here, so that the CLI can list them without loading them).
+SOLVERS = ("newton", "adam")
+
 #: Supported patch diameters, measured on the pre-stretched fabric (mm).
 DIAMETER_RANGE_MM = (10.0, 150.0)
 

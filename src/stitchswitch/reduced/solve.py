@@ -9,9 +9,8 @@ import numpy as np
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced import continuation, newton
 from stitchswitch.reduced.discretization import make_grid
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Material, Patch
+from stitchswitch.reduced.params import DEFAULT_MATERIAL, SOLVERS, Material, Patch
 
-SOLVERS = ("newton", "adam")
 #: Certificate threshold: the solution is reported converged only if the max-norm of the
 #: projected gradient (dimensionless energy per dR) is at most this.
 DEFAULT_TOL = 1e-11
