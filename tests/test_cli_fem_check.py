@@ -17,7 +17,7 @@ def test_fem_check_one_large_design_meets_the_targets(tmp_path):
 
 
 def test_fem_check_small_patch_misses_the_h_target_and_says_so():
-    result = CliRunner().invoke(cli, ["fem-check", "--designs", "25,0.6"])
+    result = CliRunner().invoke(cli, ["fem-check", "--designs", "25,0.6", "--start", "reduced"])
     assert result.exit_code == 1
     assert "FAIL  h_mm" in result.output
 
@@ -45,5 +45,32 @@ def test_variant_terms_attribute_the_gap():
     from stitchswitch.fem_reference.check import check_design
     from stitchswitch import Patch
 
-    row = check_design(Patch(25.0, 0.8))
+    row = check_design(Patch(25.0, 0.8), start="reduced")
     assert abs(row["hoop_node_average_300"]["rel_h_mm"]) < 0.75 * abs(row["reduced"]["300"]["rel_h_mm"])
+
+
+def test_fem_solve_by_continuation_matches_the_reduced_start():
+    args = ["fem-solve", "-d", "60", "-p", "1", "--elements", "30", "--json"]
+    by_reduced = CliRunner().invoke(cli, args + ["--start", "reduced"])
+    by_continuation = CliRunner().invoke(cli, args)
+    assert by_reduced.exit_code == 0 and by_continuation.exit_code == 0, by_continuation.output
+    a, b = json.loads(by_reduced.output), json.loads(by_continuation.output)
+    assert a["start"] == "reduced" and b["start"] == "continuation" and b["converged"]
+    for k in ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm"):
+        assert abs(b[k] - a[k]) <= 5e-3 * abs(a[k]), k
+
+
+def test_fem_check_starts_by_continuation_unless_told():
+    by_default = CliRunner().invoke(cli, ["fem-check", "--designs", "90,0.8", "--json"])
+    by_reduced = CliRunner().invoke(cli, ["fem-check", "--designs", "90,0.8", "--start", "reduced",
+                                          "--json"])
+    assert by_default.exit_code == 0 and by_reduced.exit_code == 0, by_default.output
+    a, b = json.loads(by_default.output), json.loads(by_reduced.output)
+    assert a["start"] == "continuation" and b["start"] == "reduced"
+    for k, v in b["rows"][0]["reference"].items():            # the same reference equilibrium
+        assert abs(a["rows"][0]["reference"][k] - v) <= 1e-6 * abs(v), k
+
+
+def test_fem_solve_bad_start():
+    result = CliRunner().invoke(cli, ["fem-solve", "-d", "50", "-p", "0.8", "--start", "flat"])
+    assert result.exit_code == 2 and "--start" in result.output

@@ -103,3 +103,77 @@ def test_observed_convergence_rate_under_nested_refinement():
         rate = np.polyfit(np.log(size), np.log(diffs), 1)[0]
         assert abs(rate - 1.0) < 0.3, rate
         assert diffs[-1] < 0.005                     # mm: the finest meshes agree closely
+
+
+# ----------------------------------------------------------------- prestretch continuation
+from stitchswitch.errors import InvalidInputError  # noqa: E402
+from stitchswitch.fem_reference import continuation  # noqa: E402
+
+KEYPOINTS = ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm")
+
+
+def test_flat_sheet_is_the_stress_free_minimizer_at_zero_prestretch():
+    model = ShellModel(Patch(40.0, 0.8), DEFAULT_MATERIAL, elements_inside=10, growth=1.3)
+    assert model.prestretched(1.0) is model
+    flat = model.prestretched(0.0)
+    x = flat.flat_state()
+    E, g, _ = flat.derivatives(x)
+    assert E == pytest.approx(0.0, abs=1e-14)
+    assert np.max(np.abs(g[flat.free])) < 1e-10              # round-off of the assembly
+    assert flat.lowest_eigenvalue(x) > 0                   # a strict minimum (no seed needed)
+    assert model.energy(x) > 1e-3                          # the design's prestretch loads it
+
+
+def test_mirror_image_has_the_same_energy(small_model):
+    """E(z) = E(-z): the symmetry the continuation's mirroring relies on."""
+    model, x = small_model
+    m = x.copy()
+    m[model.n:] *= -1.0
+    assert continuation.mirrored(model, m)[model.n] == pytest.approx(x[model.n])
+    assert model.energy(m) == pytest.approx(model.energy(x), rel=1e-13)
+
+
+def test_eigen_shift_newton_finds_the_same_equilibrium_from_the_reduced_start():
+    patch = Patch(90.0, 1.0)
+    red = solve(patch)
+    model = ShellModel(patch, DEFAULT_MATERIAL, elements_inside=20, growth=1.16)
+    x0 = model.start_from_profile(red.R_mm, red.r_mm, red.z_mm)
+    a = model.solve(x0)
+    b = model.solve(x0, globalization="eigen")
+    assert a.converged and b.converged
+    np.testing.assert_allclose(b.z_mm, a.z_mm, atol=1e-6)
+    with pytest.raises(InvalidInputError, match="globalization"):
+        model.solve(x0, globalization="trust")
+
+
+@pytest.mark.parametrize("d, p", [(40.0, 0.8), (60.0, 1.0), (90.0, 0.8)])
+def test_continuation_reaches_the_equilibrium_of_the_reduced_start(d, p, monkeypatch):
+    """From the flat sheet, without the reduced model (it is disabled during the continuation),
+    to the same local minimum as Newton from the reduced equilibrium: keypoints within 0.5 %."""
+    import stitchswitch.reduced.solve as reduced_solve
+
+    patch = Patch(d, p)
+    red = solve(patch)
+    model = ShellModel(patch, DEFAULT_MATERIAL, elements_inside=40)
+    ref = continuation.solve_reference(model, "reduced", red)
+
+    def forbidden(*args, **kwargs):
+        raise AssertionError("the continuation must not use the reduced model")
+
+    monkeypatch.setattr(reduced_solve, "solve", forbidden)
+    result = continuation.prestretch_continuation(model)
+    sol = result.solution
+    assert sol.converged and sol.residual <= 1e-9
+    assert result.lowest_eigenvalue > 0                   # a local minimum, not a saddle
+    assert result.stages[0].t <= continuation.INITIAL_STEP and result.stages[-1].t == 1.0
+    assert sol.solve_s < 6.0
+    kp, kp_ref = keypoints_from_profile(*sol.sample()), keypoints_from_profile(*ref.sample())
+    for k in KEYPOINTS:
+        assert getattr(kp, k) == pytest.approx(getattr(kp_ref, k), rel=5e-3), k
+    assert sol.energy == pytest.approx(ref.energy, rel=1e-9)
+
+
+def test_unknown_start_is_rejected():
+    model = ShellModel(Patch(40.0, 0.8), DEFAULT_MATERIAL, elements_inside=8, growth=1.3)
+    with pytest.raises(InvalidInputError, match="start: 'flat'"):
+        continuation.solve_reference(model, "flat")

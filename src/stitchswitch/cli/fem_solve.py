@@ -7,6 +7,7 @@ import pathlib
 import click
 
 from stitchswitch.cli import options
+from stitchswitch.fem_reference.continuation import DEFAULT_START, STARTS
 from stitchswitch.reduced.material_io import load_material
 from stitchswitch.reduced.params import DEFAULT_MATERIAL, Patch
 
@@ -19,23 +20,26 @@ from stitchswitch.reduced.params import DEFAULT_MATERIAL, Patch
               help="Hermite elements on the patch.")
 @click.option("--hoop-bending", is_flag=True, help="Add hoop (parallel) bending.")
 @click.option("--poisson", type=options.FINITE_FLOAT, default=0.0, show_default=True)
+@click.option("--start", type=click.Choice(STARTS), default=DEFAULT_START, show_default=True,
+              help="Start of the Newton solve: the reduced model's equilibrium, or the prestretch "
+              "continuation from the flat sheet (independent of the reduced model).")
 @click.option("--mesh", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
               metavar="FILE", help="Write the surface of revolution (.vtu, .ply, .obj, ...).")
 @options.json_opt
-def fem_solve(diameter_mm, fill, material_path, elements, hoop_bending, poisson, mesh, as_json):
+def fem_solve(diameter_mm, fill, material_path, elements, hoop_bending, poisson, start, mesh, as_json):
     """Solve one design with the scikit-fem shell reference (started from the reduced
-    equilibrium) and print its keypoints; optionally export the 3D surface through meshio."""
+    equilibrium, or by the prestretch continuation from the flat sheet) and print its
+    keypoints; optionally export the 3D surface through meshio."""
+    from stitchswitch.fem_reference.continuation import solve_reference
     from stitchswitch.fem_reference.shell import ShellModel
     from stitchswitch.reduced.keypoints import keypoints_from_profile
-    from stitchswitch.reduced.solve import solve
     from stitchswitch.revolution import surface_of_revolution, write_mesh
 
     patch = Patch(diameter_mm, fill)
     material = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
-    red = solve(patch, material)
     model = ShellModel(patch, material, elements_inside=elements, growth=1.0 + 3.2 / elements,
                        hoop_bending=hoop_bending, poisson=poisson)
-    sol = model.solve(model.start_from_profile(red.R_mm, red.r_mm, red.z_mm), max_iter=300)
+    sol = solve_reference(model, start, max_iter=300)
     R, r, z, n_in = sol.sample()
     kp = keypoints_from_profile(R, r, z, n_in)
     if mesh is not None:
@@ -44,7 +48,7 @@ def fem_solve(diameter_mm, fill, material_path, elements, hoop_bending, poisson,
     out = {"d_mm": diameter_mm, "fill": fill, "h_mm": kp.h_mm, "r_a_mm": kp.r_a_mm,
            "z_a_mm": kp.z_a_mm, "r_b_mm": kp.r_b_mm, "z_b_mm": kp.z_b_mm, "energy": sol.energy,
            "residual": sol.residual, "converged": sol.converged, "iterations": sol.iterations,
-           "solve_s": sol.solve_s, "hoop_bending": hoop_bending, "poisson": poisson}
+           "solve_s": sol.solve_s, "start": start, "hoop_bending": hoop_bending, "poisson": poisson}
     if as_json:
         click.echo(json.dumps(out))
     else:

@@ -9,19 +9,29 @@ L the reduced model's domain (N - 1) dR. The mesh has a node on the embroidery b
 geometrically growing elements outside; ``refine`` bisects every element that many times
 (nested meshes for convergence studies).
 
-The solve is Newton's method on the free dofs with an Armijo line search and a tenfold-growing
-diagonal shift when the Hessian is not positive definite; it starts from the reduced model's
-equilibrium of the same design (the same branch), and its certificate is the max-norm of the
-free gradient.
+The solve is Newton's method on the free dofs, certified by the max-norm of the free gradient,
+with one of two globalizations. ``"diagonal"`` (the default, used from the reduced model's
+equilibrium): an Armijo line search and a tenfold-growing diagonal shift when the Hessian is not
+positive definite. ``"eigen"`` (used by the prestretch continuation, ``continuation.py``, far
+from any equilibrium): the free Hessian, Jacobi-scaled and permuted to node order (a band of
+half-width 7), is used as is when its banded Cholesky succeeds, else shifted by
+2 |lambda_min| + 1e-12 with lambda_min its lowest eigenvalue (LAPACK's banded eigensolver), so
+that the step descends and leaves saddles along negative curvature; the step is backtracked until the energy satisfies Armijo and no meridional stretch
+|(r', z')| (at the quadrature points and at the nodes) falls below half its value, which keeps
+every stretch positive (the energy is +inf at zero stretch, but the pole's slope dof is not seen
+by any quadrature point).
 """
 from __future__ import annotations
 
+import copy
 import time
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 from scipy.interpolate import CubicSpline
+from scipy.linalg import (LinAlgError, cho_solve_banded, cholesky_banded, eig_banded,
+                          solveh_banded)
 from scipy.sparse.linalg import splu
 
 from stitchswitch.fem_reference.density import density
@@ -29,6 +39,8 @@ from stitchswitch.reduced.discretization import make_grid
 from stitchswitch.reduced.params import Material, Patch
 
 R_IDX, Z_IDX = (0, 1, 3), (2, 4)     # q = (r, r', z', r'', z''): r's (value, d, d2), z's (d, d2)
+BAND = 7                 # half bandwidth of the Hessian in node order: 2 nodes x (r, r', z, z')
+STRETCH_BOUND = 0.5      # "eigen": no step shrinks a meridional stretch below this fraction
 
 
 def shell_mesh_nodes(rb: float, length: float, elements_inside: int, growth: float = 1.08) -> np.ndarray:
@@ -92,6 +104,7 @@ class ShellModel:
             w_b=piece(material.w_b_emb, material.w_b_fab),
             w_log=material.w_log, gamma=material.gamma_mm, c=material.compression_ratio,
             hoop=1.0 if hoop_bending else 0.0, nu=float(poisson))
+        self.rest_lam = self.coef["lam"]           # the design's rest metric (t = 1)
         n = b.N
         self.n = n
         value, deriv = b.nodal_dofs[0], b.nodal_dofs[1]
@@ -106,7 +119,9 @@ class ShellModel:
         return np.array([np.asarray(R), R.grad[0], Z.grad[0], R.hess[0, 0], Z.hess[0, 0]])
 
     def energy(self, x) -> float:
-        q = self._q(x)
+        return self._energy_of(self._q(x))
+
+    def _energy_of(self, q) -> float:
         if np.any(q[0] <= 0) or np.any(np.hypot(q[1], q[2]) <= 0):
             return np.inf
         f, _, _ = density(q, self.S, self.coef, hessian=False)
@@ -169,8 +184,73 @@ class ShellModel:
         n = self.n
         return R, probes @ x[:n], probes @ x[n:], n_in
 
+    # ----------------------------------------------------------------- prestretch
+    def prestretched(self, t: float) -> "ShellModel":
+        """The same model with the rest-metric excess scaled, lambda = 1 + t (lambda - 1): t = 0 is
+        the flat, stress-free sheet, t = 1 the design (``self``). Shares the mesh and basis."""
+        if t == 1.0:
+            return self
+        other = copy.copy(self)
+        other.coef = dict(self.coef, lam=1.0 + t * (self.rest_lam - 1.0))
+        return other
+
+    def flat_state(self) -> np.ndarray:
+        """The flat sheet at rest, r = S and z = 0 (stress free at t = 0)."""
+        x = np.zeros(2 * self.n)
+        x[self._value_dofs] = self.nodes
+        x[self._deriv_dofs] = 1.0
+        return x
+
+    def stretches(self, x, q=None) -> np.ndarray:
+        """Meridional stretch |(r', z')| at every quadrature point, then at every node (``q``:
+        the fields at the quadrature points, if already computed)."""
+        q = self._q(x) if q is None else q
+        nodal = np.hypot(x[self._deriv_dofs], x[self.n + self._deriv_dofs])
+        return np.concatenate([np.hypot(q[1], q[2]).ravel(), nodal])
+
+    def _node_order(self) -> np.ndarray:
+        """The free dofs sorted by mesh node (then r, r', z, z'): the Hessian becomes banded."""
+        n, m = self.n, self.nodes.size
+        node, kind = np.empty(2 * n, dtype=int), np.empty(2 * n, dtype=int)
+        for k, dofs in enumerate((self._value_dofs, self._deriv_dofs,
+                                  n + self._value_dofs, n + self._deriv_dofs)):
+            node[dofs], kind[dofs] = np.arange(m), k
+        free = self.free
+        return free[np.lexsort((kind[free], node[free]))]
+
+    @staticmethod
+    def _scaled_band(H, order):
+        """Jacobi scaling D and the lower band (LAPACK storage) of D^-1 H D^-1 on ``order``."""
+        Hf = H[order][:, order].tocoo()
+        diag = np.abs(Hf.diagonal())
+        D = np.sqrt(np.maximum(diag, 1e-12 * max(float(diag.max()), 1e-300)))
+        lower = Hf.row >= Hf.col
+        rows, cols = Hf.row[lower], Hf.col[lower]
+        if np.any(rows - cols > BAND):
+            raise RuntimeError("the Hessian is not banded in node order")
+        ab = np.zeros((BAND + 1, order.size))
+        np.add.at(ab, (rows - cols, cols), Hf.data[lower] / (D[rows] * D[cols]))
+        return D, ab
+
+    def lowest_eigenvalue(self, x) -> float:
+        """Lowest eigenvalue of the Jacobi-scaled free Hessian at ``x`` (> 0: a strict local
+        minimum, up to round-off; the slack fabric's nearly free modes sit at ~1e-12)."""
+        _, _, H = self.derivatives(x)
+        _, ab = self._scaled_band(H, self._node_order())
+        return float(eig_banded(ab, lower=True, select="i", select_range=(0, 0),
+                                eigvals_only=True)[0])
+
     # ----------------------------------------------------------------- Newton
-    def solve(self, x0, *, tol: float = 1e-9, max_iter: int = 100) -> ShellSolution:
+    def solve(self, x0, *, tol: float = 1e-9, max_iter: int = 100,
+              globalization: str = "diagonal") -> ShellSolution:
+        """Newton's method from ``x0``; ``globalization`` is ``"diagonal"`` or ``"eigen"``
+        (module docstring)."""
+        if globalization == "eigen":
+            return self._solve_eigen(x0, tol, max_iter)
+        if globalization != "diagonal":
+            from stitchswitch.errors import InvalidInputError
+
+            raise InvalidInputError(f"globalization: {globalization!r} is not 'diagonal' or 'eigen'")
         t0 = time.perf_counter()
         x = np.array(x0, dtype=float)
         free = self.free
@@ -220,3 +300,65 @@ class ShellModel:
                             float(E), residual, converged, it, time.perf_counter() - t0, self)
         object.__setattr__(sol, "_x", x)
         return sol
+
+    def _solution(self, x, E, residual, converged, it, t0) -> ShellSolution:
+        n = self.n
+        sol = ShellSolution(self.patch, self.nodes, x[:n][self._value_dofs], x[n:][self._value_dofs],
+                            float(E), residual, converged, it, time.perf_counter() - t0, self)
+        object.__setattr__(sol, "_x", x)
+        return sol
+
+    def _solve_eigen(self, x0, tol: float, max_iter: int) -> ShellSolution:
+        """Newton with the Hessian shifted by its lowest eigenvalue, Armijo backtracking and the
+        stretch bound (module docstring)."""
+        t0 = time.perf_counter()
+        x = np.array(x0, dtype=float)
+        if not np.isfinite(self.energy(x)):
+            raise ValueError("the start is outside the energy's domain")
+        order = self._node_order()
+        it = 0
+        stretch = self.stretches(x)
+        while True:
+            E, g, H = self.derivatives(x)
+            gf = g[order]
+            residual = float(np.max(np.abs(gf)))
+            if residual <= tol or it >= max_iter:
+                break
+            it += 1
+            D, ab = self._scaled_band(H, order)
+            gs = gf / D
+            try:                             # positive definite: the plain Newton step
+                step = cho_solve_banded((cholesky_banded(ab, lower=True), True), -gs)
+            except LinAlgError:
+                low = eig_banded(ab, lower=True, select="i", select_range=(0, 0),
+                                 eigvals_only=True)[0]
+                shift = max(-2.0 * low, 0.0) + 1e-12
+                while True:                  # round-off can leave the shifted band indefinite
+                    band = ab.copy()
+                    band[0] += shift
+                    try:
+                        step = solveh_banded(band, -gs, lower=True)
+                        break
+                    except LinAlgError:
+                        shift = max(10.0 * shift, 1e-10)
+            slope = float(gs @ step)
+            d = step / D
+            floor = STRETCH_BOUND * stretch
+            alpha, accepted = 1.0, False
+            for _ in range(60):
+                trial = x.copy()
+                trial[order] += alpha * d
+                q = self._q(trial)
+                trial_stretch = self.stretches(trial, q)
+                if np.all(trial_stretch >= floor):
+                    E_new = self._energy_of(q)
+                    if E_new <= E + 1e-4 * alpha * slope or (
+                            np.isfinite(E_new) and -slope <= 1e-13 * abs(E)
+                            and E_new <= E + 1e-12 * abs(E)):
+                        accepted = True
+                        break
+                alpha *= 0.5
+            if not accepted:
+                break                                   # no admissible descent: give up
+            x, stretch = trial, trial_stretch
+        return self._solution(x, E, residual, residual <= tol, it, t0)
