@@ -29,8 +29,13 @@ from stitchswitch.reduced.params import DEFAULT_MATERIAL
               required=True, metavar="FILE", help="Output map (.npz).")
 @click.option("--plot", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
               metavar="PNG", help="Also write the h(d, p) heatmap.")
+@click.option("--cold-start", is_flag=True,
+              help="Solve every point from the released state, exactly as a direct solve "
+                   "(default: each diameter along increasing fill, warm-started from the "
+                   "previous equilibrium).")
 @options.json_opt
-def precompute(material_path, diameters, fills, workers, scheduler, out, plot, as_json):
+def precompute(material_path, diameters, fills, workers, scheduler, out, plot, cold_start,
+               as_json):
     """Solve every (d, p) of the grid and write the design-space map.
 
     Every point is a certified solve; points that fail the neighbour-mean smoothness test are
@@ -50,7 +55,7 @@ def precompute(material_path, diameters, fills, workers, scheduler, out, plot, a
             last[0] = done
 
         dmap = build_map.build(material, d, p, workers=workers, progress=progress,
-                               scheduler=scheduler)
+                               scheduler=scheduler, warm_start=not cold_start)
     seconds = time.perf_counter() - t0
     map_io.save_map(dmap, out)
     if plot is not None:

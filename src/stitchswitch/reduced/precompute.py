@@ -1,9 +1,13 @@
 """Build the design-space map: one certified solve per grid design, rows in parallel.
 
-Every grid point is the result of ``solve(Patch(d, p), material)``, the same deterministic
-solve a direct call makes, so the map agrees with direct solves by construction. Neighbours on
-the grid are used by ``map_check`` to explain any point that is not smooth (a branch change or
-the buckling onset), by warm-starting one design from its neighbour's profile.
+By default (``warm_start=True``) each row (one diameter) is solved along increasing fill, every
+design started from the previous design's certified equilibrium (``solve(..., warm_start=)``;
+a cold solve if there is none). The map then follows the popped branch continuously; it agrees
+with direct (cold) solves except where the cold solve lands on another equilibrium, and there
+the map's has the lower energy (docs/design-map.md). With ``warm_start=False`` every point is
+``solve(Patch(d, p), material)`` exactly, as a direct call makes it. Neighbours on the grid are
+also used by ``map_check`` to explain any point that is not smooth (a branch change or the
+buckling onset), by warm-starting one design from its neighbour's profile.
 """
 from __future__ import annotations
 
@@ -40,11 +44,12 @@ def parse_range(text: str, name: str) -> np.ndarray:
 def _solve_row(args):
     from stitchswitch.reduced.solve import solve
 
-    d, fills, material = args
+    d, fills, material, warm = args
     rows = {name: [] for name in KEYPOINTS + ("energy", "residual", "converged", "u", "z")}
     sol = None
     for p in fills:
-        sol = solve(Patch(d, p), material)
+        start = sol if warm and sol is not None and sol.converged else None
+        sol = solve(Patch(d, p), material, warm_start=start)
         kp = sol.keypoints
         for name in KEYPOINTS:
             rows[name].append(getattr(kp, name))
@@ -58,9 +63,11 @@ def _solve_row(args):
 
 def build(material: Material = DEFAULT_MATERIAL, diameters_mm=DEFAULT_DIAMETERS_MM,
           fills=DEFAULT_FILLS, workers: int = 1, progress=None, check: bool = True,
-          scheduler: str | None = None) -> DesignMap:
+          scheduler: str | None = None, warm_start: bool = True) -> DesignMap:
     """Solve every grid design; ``progress(rows_done)`` is called once per diameter (local
     runs). ``scheduler``: a Dask scheduler address to solve the rows on a cluster.
+    ``warm_start``: solve each row along increasing fill from the previous equilibrium
+    (default); False: every point a cold solve.
 
     With ``check`` the smoothness test runs and unsmooth points are explained and flagged
     (``map_check.classify``)."""
@@ -74,7 +81,8 @@ def build(material: Material = DEFAULT_MATERIAL, diameters_mm=DEFAULT_DIAMETERS_
     for dd in d:                       # validate every design before any work
         for pp in (p[0], p[-1]):
             Patch(dd, pp)
-    rows = run_all(_solve_row, [(float(x), p.tolist(), material) for x in d], workers, progress,
+    rows = run_all(_solve_row, [(float(x), p.tolist(), material, bool(warm_start)) for x in d],
+                   workers, progress,
                    scheduler=scheduler)
     table = {k: np.array([r[0][k] for r in rows]) for k in rows[0][0]}
     dmap = DesignMap(
