@@ -179,7 +179,7 @@ def test_failure_midway_is_atomic(tmp_path):
 
 def test_write_failure_is_atomic(tmp_path, monkeypatch):
     design = load_design(write_design(tmp_path / "design.json", SMALL[:1]))
-    from stitchswitch.layout import fabrication_outdir as od
+    from stitchswitch import outdir as od
     calls = []
 
     def flaky(path, data):

@@ -30,22 +30,19 @@ in a few seconds and cached.
 from __future__ import annotations
 
 import base64
-import contextlib
 import html
 import io
 import json
 import logging
 import math
 import os
-import secrets
-import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from stitchswitch import __version__
-from stitchswitch.errors import InvalidInputError
+from stitchswitch.outdir import building, check_outdir, previous_output
 from stitchswitch.reduced.material_io import material_hash
 from stitchswitch.reduced.params import Material, Patch
 from stitchswitch.validation.measured import QUANTITIES, SPLITS, MeasuredData
@@ -107,58 +104,10 @@ def predict(data: MeasuredData, material: Material) -> Predictions:
 def check_report_dir(outdir) -> bool:
     """Raise ``InvalidInputError`` unless ``outdir`` can take a report; True if it holds a
     previous report that will be replaced."""
-    out = Path(outdir)
-    where = f"report directory {os.fspath(outdir)!r}"
-    parent = out.absolute().parent
-    if not parent.is_dir():
-        raise InvalidInputError(f"{where}: the parent directory {str(parent)!r} does not exist")
-    if not out.exists() and not out.is_symlink():
-        return False
-    if out.is_symlink() or not out.is_dir():
-        raise InvalidInputError(f"{where}: exists and is not a directory")
-    entries = sorted(p.name for p in out.iterdir())
-    if not entries:
-        return False
-    foreign = [e for e in entries if e not in REPORT_FILES]
-    try:
-        previous = json.loads((out / "report.json").read_text("utf-8")).get("generator") == GENERATOR
-    except (OSError, ValueError, AttributeError):
-        previous = False
-    if foreign or not previous:
-        what = f"holds {foreign[0]!r}, not from this tool" if foreign else \
-            "is not empty and holds no report.json of this tool"
-        raise InvalidInputError(f"{where}: {what}; give an empty or new directory, or one "
-                                "holding a previous report")
-    return True
+    return check_outdir(outdir, previous=_PREVIOUS, what="report directory")
 
 
-def _new_dir_next_to(out: Path, tag: str) -> Path:
-    for _ in range(100):
-        tmp = out.absolute().parent / f".{out.name}.{secrets.token_hex(6)}.{tag}"
-        try:
-            os.mkdir(tmp, 0o777)  # the umask applies, as for a plain mkdir
-            return tmp
-        except FileExistsError:
-            continue
-    raise FileExistsError(f"could not create a temporary directory next to {str(out)!r}")
-
-
-def _place(tmp: Path, out: Path) -> None:
-    """Move the finished report ``tmp`` to ``out`` (absent, empty, or a previous report)."""
-    if out.is_dir() and not any(out.iterdir()):
-        out.rmdir()
-    if not out.exists():
-        os.rename(tmp, out)
-        return
-    old = _new_dir_next_to(out, "old")
-    old.rmdir()
-    os.rename(out, old)
-    try:
-        os.rename(tmp, out)
-    except BaseException:
-        os.rename(old, out)
-        raise
-    shutil.rmtree(old, ignore_errors=True)
+_PREVIOUS = previous_output(REPORT_FILES, GENERATOR)
 
 
 # ----------------------------------------------------------------------------- figures
@@ -457,17 +406,10 @@ def write_report(data: MeasuredData, material: Material, outdir, material_label:
                     "and marked", int((~pred.converged).sum()), len(data.rows),
                     ", ".join(str(r.line) for r, c in zip(data.rows, pred.converged) if not c))
     rep = _report_dict(data, pred, material, material_label)
-    tmp = _new_dir_next_to(out, "tmp")
-    try:
+    with building(out, previous=_PREVIOUS, what="report directory") as tmp:
         _figures(data, pred, material, tmp)
         images = {name: (tmp / name).read_bytes() for name in FIGURES}
         (tmp / "report.json").write_text(json.dumps(rep, indent=2, allow_nan=False) + "\n", "utf-8")
         (tmp / "report.md").write_text(_markdown(rep), "utf-8")
         (tmp / "report.html").write_text(_html(rep, images), "utf-8")
-        check_report_dir(out)  # still acceptable after the work?
-        _place(tmp, out)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            shutil.rmtree(tmp)
-        raise
     return rep
