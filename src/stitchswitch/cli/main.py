@@ -19,6 +19,7 @@ COMMANDS = {
     "force": "force:force",
     "validate": "validate:validate",
     "calibrate": "calibrate:calibrate",
+    "discover": "discover:discover",
     "fem-check": "fem_check:fem_check_cmd",
     "switch-force": "switch_force:switch_force",
     "fem-solve": "fem_solve:fem_solve",

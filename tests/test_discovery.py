@@ -1,0 +1,254 @@
+"""Discrepancy discovery: the statistical pieces on known inputs, the fit machinery, the
+synthetic generator, and a reduced-size proof on data with a hidden effect (and a null case).
+
+The proof runs on a coarse discretization (dR_max = 1 mm, 80 nodes), 9 training designs and
+noise at 30 % of the reference dataset's; the full-size proof is benchmarks/bench_discovery.py.
+"""
+import importlib.util
+import pathlib
+
+import numpy as np
+import pytest
+
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.reduced.params import Patch
+from stitchswitch.validation.discovery import DiscoveryConfig, discover
+from stitchswitch.validation.discovery_cv import f_test, fold_labels, sign_flip_test
+from stitchswitch.validation.discovery_eval import Evaluator
+from stitchswitch.validation.discovery_fit import fit, jacobian, linearized_start, scan_values
+from stitchswitch.validation.discovery_residuals import systematic_test
+from stitchswitch.validation.discovery_signature import explain, signature
+from stitchswitch.validation.discovery_space import BASE_FREE, ModelSpec
+from stitchswitch.validation.discovery_synthetic import (N_VAL, SIGMA_MM, START_MATERIAL,
+                                                         TRAIN_D_MM, TRAIN_FILL, TRUE_MATERIAL,
+                                                         dataset_text, draw_values)
+from stitchswitch.validation.measured import parse_measurements
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+COARSE = dict(n_nodes=80, dr_max_mm=1.0)
+TRUE = TRUE_MATERIAL.replace(**COARSE)
+START = START_MATERIAL.replace(**COARSE)
+TRAIN = dict(train_d=(30.0, 50.0, 70.0), train_fill=(0.7, 0.85, 1.0), n_val=5)
+SMALL = DiscoveryConfig(effects=("prestretch_loss", "hoop_bending", "fill_exponent"),
+                        folds=3, fit_max_nfev=8, cv_max_nfev=2, scan_points=3, permutations=300)
+
+
+def _grid(n=7):
+    d, p = np.meshgrid(np.linspace(20, 90, n), np.linspace(0.6, 1.0, n))
+    return d.ravel(), p.ravel()
+
+
+# ----------------------------------------------------------------------------- statistics
+
+def test_residual_test_tells_a_trend_from_noise():
+    d, p = _grid()
+    rng = np.random.default_rng(0)
+    noise = rng.normal(0, 1.0, d.size)
+    trend = 2.0 * ((d - 55) / 35) ** 2 - 1.0 + noise
+    offset = 1.2 + noise
+    t = systematic_test(d, p, trend, 500, 1)
+    assert t["p_value"] < 0.01 and t["cv_r2"] > 0.3
+    assert systematic_test(d, p, offset, 500, 1)["p_value"] < 0.01   # a bias is systematic too
+
+
+def test_residual_test_false_alarm_rate_is_about_alpha():
+    """Pure noise: the randomization p-value is (close to) uniform."""
+    d, p = _grid(5)
+    rng = np.random.default_rng(3)
+    pv = np.array([systematic_test(d, p, rng.normal(0, 1, d.size), 200, k)["p_value"]
+                   for k in range(150)])
+    assert 0.04 <= np.mean(pv < 0.1) <= 0.18
+    assert 0.35 <= np.mean(pv < 0.5) <= 0.65
+
+
+def test_f_test_and_sign_flip():
+    F, p = f_test(200.0, 100.0, 125, 5, 6)
+    assert F == pytest.approx(100.0 / (100.0 / 119)) and p < 1e-10
+    assert f_test(100.0, 100.0, 125, 5, 6) == (0.0, 1.0)      # no improvement
+    assert f_test(100.0, 120.0, 125, 5, 6) == (0.0, 1.0)      # worse
+    rng = np.random.default_rng(2)
+    assert sign_flip_test(rng.normal(1.0, 1.0, 25), 2000, 0) < 0.01
+    assert sign_flip_test(rng.normal(-0.5, 1.0, 25), 2000, 0) > 0.5
+
+
+def test_fold_labels_group_designs_and_are_seeded():
+    designs = [(20, 0.6), (40, 0.6), (20, 0.6), (60, 0.8), (80, 1.0), (40, 0.6), (90, 0.7)]
+    labels = fold_labels(designs, 3, 5)
+    assert labels[0] == labels[2] and labels[1] == labels[5]
+    assert np.array_equal(labels, fold_labels(designs, 3, 5))
+    counts = np.bincount(fold_labels([(d, 0.5) for d in range(10, 60)], 5, 0))
+    assert counts.min() == counts.max() == 10
+
+
+def test_explain_finds_the_unabsorbable_direction():
+    rng = np.random.default_rng(4)
+    J = rng.normal(size=(40, 3))
+    s_abs = J @ np.array([1.0, -2.0, 0.5])               # fully absorbable
+    s_new = rng.normal(size=40)
+    e = 0.7 * (s_new - J @ np.linalg.lstsq(J, s_new, rcond=None)[0])
+    out = explain(J, s_new.reshape(8, 5), e.reshape(8, 5), ("h", "r_a", "z_a", "r_b", "z_b"))
+    assert out["correlation"] == pytest.approx(1.0) and out["step"] == pytest.approx(0.7)
+    assert explain(J, s_abs.reshape(8, 5), e.reshape(8, 5), ("h", "r_a", "z_a", "r_b", "z_b"))[
+        "unabsorbed"] < 1e-12
+
+
+# ----------------------------------------------------------------------------- fit machinery
+
+def test_model_spec_round_trip_and_bounds():
+    spec = ModelSpec(START, "hoop_bending")
+    assert spec.names == BASE_FREE + ("H",)
+    x = spec.encode(START.replace(w_b_emb=20.0), (3.0,))
+    material, active = spec.decode(x)
+    assert material.w_b_emb == pytest.approx(20.0) and active == {"hoop_bending": (pytest.approx(3.0),)}
+    lo, hi = spec.bounds()
+    assert lo[-1] == 0.0 and hi[-1] == 50.0
+    with pytest.raises(InvalidInputError, match="cannot be fitted"):
+        ModelSpec(START, None, ("w_log",))
+    with pytest.raises(InvalidInputError, match="not in the library"):
+        ModelSpec(START, "gravity_sag")
+    vals = scan_values(ModelSpec(START, "tension_asymmetry"), 3)
+    assert vals[0] == (0.0,) and any(v[0] < 0 for v in vals) and any(v[0] > 0 for v in vals)
+
+
+def test_evaluator_caches_and_warm_jacobian_matches_cold():
+    spec = ModelSpec(START)
+    designs = [(40.0, 0.8), (60.0, 1.0)]
+    ev = Evaluator()
+    x = spec.encode(START)
+    a = ev.one(spec, x, designs)
+    calls = ev.calls
+    assert np.array_equal(ev.one(spec, x, designs), a) and ev.calls == calls
+    J = jacobian(spec, ev, designs, x, *spec.bounds())
+    xs = [x + np.eye(x.size)[k] * 0.01 for k in range(x.size)]
+    cold = ev.keypoints(spec, xs, designs)
+    J_cold = np.stack([(c - a).ravel() / 0.01 for c in cold], axis=1)
+    np.testing.assert_allclose(J, J_cold, atol=1e-4 * np.abs(J_cold).max())
+
+
+def test_fit_recovers_coefficients_from_noise_free_keypoints():
+    spec = ModelSpec(START, None, ("w_b_emb", "k_r_emb"))
+    designs = [(30.0, 0.8), (50.0, 1.0), (70.0, 0.7)]
+    ev = Evaluator()
+    truth = START.replace(w_b_emb=14.0, k_r_emb=1.6)
+    measured = ev.one(spec, spec.encode(truth), designs)
+    f = fit(spec, ev, designs, measured, spec.encode(START), max_nfev=15)
+    assert f.mse_mm2 < 1e-4
+    assert f.parameters["w_b_emb"] == pytest.approx(14.0, rel=0.05)
+
+
+def test_linearized_start_is_the_gauss_newton_step():
+    spec = ModelSpec(START, "hoop_bending")
+    J0 = np.array([[1.0, 0, 0, 0, 0], [0, 1.0, 0, 0, 0], [0, 0, 1.0, 0, 0], [0, 0, 0, 1.0, 0],
+                   [0, 0, 0, 0, 1.0]] * 2)
+    sig = np.zeros((2, 5))
+    sig[1, 0] = 1.0                   # only the effect moves the 6th residual
+    res = np.zeros((2, 5))
+    res[1, 0] = 2.0                   # 2 mm = 2 H
+    x_base = spec.encode(START)[:5]
+    x = linearized_start(spec, x_base, J0, sig, res)
+    assert x[-1] == pytest.approx(2.0) and spec.decode(x)[1]["hoop_bending"][0] == pytest.approx(2.0)
+
+
+def test_signature_is_zero_to_probe_secant():
+    spec = ModelSpec(START, "prestretch_loss")
+    ev = Evaluator()
+    x = spec.encode(START)
+    s = signature(spec, ev, [(50.0, 0.8)], x[:5])
+    from stitchswitch.validation.effects import solve_effects
+    from stitchswitch.reduced.solve import solve
+    on = solve_effects(Patch(50.0, 0.8), START, {"prestretch_loss": (0.05,)}).keypoints
+    off = solve(Patch(50.0, 0.8), START).keypoints
+    assert s[0, 1] == pytest.approx((on.r_a_mm - off.r_a_mm) / 0.05, rel=1e-9)
+    assert s[0, 1] > 0     # less pre-stretch: a larger relaxed patch
+
+
+# ----------------------------------------------------------------------------- synthetic data
+
+def test_dataset_is_synthetic_reproducible_and_hides_the_effect():
+    kw = dict(seed=5, material=TRUE, **TRAIN)
+    a = dataset_text("hoop_bending", (3.0,), **kw)
+    assert a == dataset_text("hoop_bending", (3.0,), **kw)
+    data = parse_measurements(a, "x.csv")
+    assert data.synthetic and "SYNTHETIC" in data.source and "hoop" not in data.source
+    assert "# hidden truth (not read by the workflow): hoop_bending H=3" in a
+    assert len(data.split("train")) == 9 and len(data.split("val")) == 5
+    clean = parse_measurements(dataset_text("hoop_bending", (3.0,), noise=False, **kw), "c")
+    assert np.std(data.keypoints() - clean.keypoints(), axis=0)[0] > 0.5
+    with pytest.raises(InvalidInputError, match="not a library effect"):
+        dataset_text("magic", seed=1)
+
+
+def test_noise_and_design_match_the_reference_generator():
+    """The issue asks for noise at the magnitude of the synthetic reference dataset."""
+    spec = importlib.util.spec_from_file_location("gen", ROOT / "scripts" / "make_measured_dataset.py")
+    gen = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gen)
+    assert SIGMA_MM == gen.SIGMA_MM
+    assert (TRAIN_D_MM, TRAIN_FILL, N_VAL) == (gen.TRAIN_D_MM, gen.TRAIN_FILL, gen.N_VAL)
+
+
+def test_generator_script_is_byte_reproducible(tmp_path):
+    spec = importlib.util.spec_from_file_location("dgen", ROOT / "scripts" / "make_discovery_dataset.py")
+    gen = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gen)
+    a, b = tmp_path / "a.csv", tmp_path / "b.csv"
+    gen.main([str(a), "--source", "fill_exponent", "--seed", "3"])
+    gen.main([str(b), "--source", "fill_exponent", "--seed", "3"])
+    assert a.read_bytes() == b.read_bytes()
+    text = a.read_text()
+    assert text.startswith("# source: SYNTHETIC") and "fill_exponent delta=" in text
+    assert len(text.splitlines()) == 3 + 53
+
+
+def test_drawn_strengths_lie_in_the_hidden_range():
+    from stitchswitch.validation.effects import LIBRARY
+
+    rng = np.random.default_rng(0)
+    for name, effect in LIBRARY.items():
+        (v,) = draw_values(name, rng)
+        lo, hi = effect.parameters[0].hidden
+        assert lo <= v <= hi
+
+
+# ----------------------------------------------------------------------------- the proof, reduced
+
+def _data(source, values, seed):
+    return parse_measurements(dataset_text(source, values, seed=seed, material=TRUE,
+                                           sigma_mm=tuple(0.3 * s for s in SIGMA_MM), **TRAIN),
+                              f"{source}.csv")
+
+
+def test_hidden_effect_is_named_and_the_gap_shrinks():
+    """prestretch_loss hidden at 0.35; the workflow is given three candidates and not told."""
+    data = _data("prestretch_loss", (0.35,), 21)
+    disc = discover(data, START, SMALL)
+    s = disc.summary
+    assert s["missing_effect"] == "prestretch_loss" and s["significant"]
+    assert s["ranking"][0]["effect"] == "prestretch_loss"
+    assert 0.2 < s["effect_parameters"]["loss"] < 0.5
+    # the gap to the noise-free truth on the validation rows at least halves for h and r_a
+    clean = parse_measurements(dataset_text("prestretch_loss", (0.35,), seed=21, material=TRUE,
+                                            noise=False, **TRAIN), "c").keypoints()
+    va = disc.split == "val"
+    gap = lambda pred: np.mean(np.abs(pred[va] - clean[va]), axis=0)   # noqa: E731
+    assert np.all(gap(disc.after)[:2] <= 0.5 * gap(disc.before)[:2])
+    assert s["after"]["r_a"]["mae_mm"] < s["before"]["r_a"]["mae_mm"]   # against the noisy rows
+    assert s["ranking"][0]["signature"]["correlation"] > 0
+
+
+def test_null_data_names_no_effect():
+    disc = discover(_data(None, (), 22), START, SMALL.__class__(
+        effects=("prestretch_loss", "hoop_bending"), folds=3, fit_max_nfev=8, cv_max_nfev=2,
+        scan_points=3, permutations=300))
+    assert disc.summary["missing_effect"] is None and not disc.summary["significant"]
+    assert disc.summary["after"] == disc.summary["before"]
+    assert "not significantly" in disc.summary["decision"] or "no candidate" in disc.summary["decision"]
+
+
+def test_config_rejects_bad_settings():
+    with pytest.raises(InvalidInputError, match="not in the library"):
+        DiscoveryConfig(effects=("gravity",))
+    with pytest.raises(InvalidInputError, match="twice"):
+        DiscoveryConfig(effects=("hardening", "hardening"))
+    with pytest.raises(InvalidInputError, match="alpha"):
+        DiscoveryConfig(alpha=1.5)

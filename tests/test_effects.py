@@ -1,0 +1,202 @@
+"""The candidate effects: derivatives against finite differences, zero strength is the starting
+model bit for bit, continuity at zero, each effect changes the keypoints, and the registry."""
+import numpy as np
+import pytest
+
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.reduced import assembly
+from stitchswitch.reduced.discretization import make_grid
+from stitchswitch.reduced.params import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.solve import solve
+from stitchswitch.validation.effects import (LIBRARY, Effect, EffectParameter, configure,
+                                             get_effect, register_effect, solve_effects)
+from stitchswitch.validation.effects import gravity_sag, hardening, hoop_bending, tension_asymmetry
+from stitchswitch.validation.effects.registry import LIBRARY as REGISTRY
+from tests.conftest import random_state
+
+FAST = DEFAULT_MATERIAL.replace(n_nodes=120, dr_max_mm=1.0)
+PATCH = Patch(20.0, 0.8)
+
+
+def _kp(sol):
+    k = sol.keypoints
+    return np.array([k.h_mm, k.r_a_mm, k.z_a_mm, k.r_b_mm, k.z_b_mm])
+
+
+def _pack(r, z):
+    x = np.empty(2 * r.size)
+    x[0::2], x[1::2] = r, z
+    return x
+
+
+def _fd_gradient(f, x, h=1e-6):
+    g = np.empty_like(x)
+    for k in range(x.size):
+        e = np.zeros_like(x)
+        e[k] = h
+        g[k] = (f(x + e) - f(x - e)) / (2 * h)
+    return g
+
+
+NEW_TERMS = {
+    "hardening": hardening.term(0.7, 1.0),
+    "hoop_bending": hoop_bending.term(2.5),
+    "tension_asymmetry_pos": tension_asymmetry.term(0.08, 0.8),
+    "tension_asymmetry_neg": tension_asymmetry.term(-0.15, 1.0),
+    "gravity_sag": gravity_sag.EFFECT.terms(PATCH, DEFAULT_MATERIAL, (0.3,))[0],
+}
+
+
+@pytest.mark.parametrize("name", sorted(NEW_TERMS))
+@pytest.mark.parametrize("seed", [0, 1])
+def test_new_term_derivatives_match_finite_differences(small_grid, name, seed):
+    term = (NEW_TERMS[name],)
+    r, z = random_state(small_grid, seed)
+    E, g, hb = assembly.derivatives(r, z, small_grid, term)
+    energy = lambda x: assembly.energy(x[0::2], x[1::2], small_grid, term)      # noqa: E731
+    gradient = lambda x: assembly.gradient(x[0::2], x[1::2], small_grid, term)  # noqa: E731
+    x = _pack(r, z)
+    assert E == pytest.approx(energy(x), rel=1e-12)
+    assert E != 0.0
+    g_fd = _fd_gradient(energy, x)
+    scale = np.max(np.abs(g))
+    assert scale > 0
+    np.testing.assert_allclose(g, g_fd, rtol=0, atol=1e-6 * scale)
+    H = assembly.band_to_dense(hb)
+    H_fd = np.array([_fd_gradient(lambda y: gradient(y)[k], x) for k in range(x.size)])
+    np.testing.assert_allclose(H, H_fd, rtol=0, atol=1e-6 * max(np.max(np.abs(H_fd)), 1e-12))
+
+
+@pytest.mark.parametrize("name", ["fill_exponent", "boundary_transition"])
+def test_grid_effects_derivatives_through_wrapped_terms(small_grid, name):
+    """Grid changes reach every term; the total derivatives stay exact."""
+    material = DEFAULT_MATERIAL.replace(n_nodes=40, w_log=0.5, gamma_mm=1.0)
+    effect = get_effect(name)
+    _, terms = configure(PATCH, material, {name: (effect.parameters[0].probe * 4,)})
+    r, z = random_state(small_grid, 4)
+    x = _pack(r, z)
+    _, g, hb = assembly.derivatives(r, z, small_grid, terms)
+    g_fd = _fd_gradient(lambda y: assembly.energy(y[0::2], y[1::2], small_grid, terms), x)
+    np.testing.assert_allclose(g, g_fd, rtol=0, atol=1e-6 * np.max(np.abs(g)))
+    H_fd = np.array([_fd_gradient(lambda y: assembly.gradient(y[0::2], y[1::2], small_grid,
+                                                               terms)[k], x)
+                     for k in range(x.size)])
+    np.testing.assert_allclose(assembly.band_to_dense(hb), H_fd, rtol=0,
+                               atol=1e-6 * np.max(np.abs(H_fd)))
+
+
+def test_hoop_bending_is_the_shell_references_hoop_term():
+    """On a smooth cone-like profile, H = 1 matches B z'^2 / (l r) integrated (B = w_b s / 8)."""
+    grid = make_grid(Patch(60.0, 1.0), DEFAULT_MATERIAL)
+    R = grid.R
+    r = 1.3 * R
+    z = 5.0 * np.exp(-(R / 40.0) ** 2)
+    E = hoop_bending.term(1.0).energy(r, z, hoop_bending.term(1.0).coefficients(grid))
+    mid = 0.5 * (R[1:] + R[:-1])
+    zp = -5.0 * 2 * mid / 1600.0 * np.exp(-(mid / 40.0) ** 2)
+    l = np.hypot(1.3, zp)
+    w = hoop_bending.segment_weights(grid)
+    continuum = np.sum(w * zp ** 2 / (l * 1.3 * mid)) / grid.n_nodes
+    assert E == pytest.approx(continuum, rel=2e-3)
+
+
+def test_tension_asymmetry_completes_the_square():
+    """bending + tension_asymmetry = w rho^2/D (T - T0)^2 per inside hinge."""
+    from stitchswitch.reduced.terms import bending
+
+    grid = make_grid(Patch(20.0, 0.9), DEFAULT_MATERIAL.replace(n_nodes=40))
+    r, z = random_state(grid, 5)
+    term = tension_asymmetry.term(0.1, 0.9)
+    w, t0 = term.coefficients(grid)
+    total = bending.energy(r, z, bending.coefficients(grid)) + term.energy(r, z, (w, t0))
+    expected = 0.0
+    wb = bending.coefficients(grid)[0]
+    for i in range(grid.n_nodes - 2):
+        a = np.array([r[i + 1] - r[i], z[i + 1] - z[i]])
+        b = np.array([r[i + 2] - r[i + 1], z[i + 2] - z[i + 1]])
+        T = (a[0] * b[1] - a[1] * b[0]) / (np.linalg.norm(a) * np.linalg.norm(b) + a @ b)
+        D = 0.5 * (r[i] + r[i + 1]) * np.linalg.norm(a) + 0.5 * (r[i + 1] + r[i + 2]) * np.linalg.norm(b)
+        A = r[i + 1] ** 2 / D
+        expected += wb[i] * A * T ** 2 + w[i] * A * (t0[i] ** 2 - 2 * t0[i] * T)
+        if w[i] == wb[i]:   # strictly inside: a perfect square
+            assert wb[i] * A * (T - t0[i]) ** 2 == pytest.approx(
+                wb[i] * A * T ** 2 + w[i] * A * (t0[i] ** 2 - 2 * t0[i] * T), rel=1e-12)
+    assert total == pytest.approx(expected, rel=1e-12)
+    assert np.count_nonzero(w) == grid.n_inside      # inside hinges plus the boundary hinge
+
+
+@pytest.mark.parametrize("name", list(LIBRARY))
+def test_zero_strength_is_the_starting_model_bit_for_bit(name):
+    effect = get_effect(name)
+    zero = (0.0,) * len(effect.parameters)
+    material, terms = configure(PATCH, FAST, {name: zero})
+    assert material is FAST and terms is None
+    base = solve(PATCH, FAST)
+    sol = solve_effects(PATCH, FAST, {name: zero})
+    assert np.array_equal(sol.r_mm, base.r_mm) and np.array_equal(sol.z_mm, base.z_mm)
+
+
+@pytest.mark.parametrize("name", list(LIBRARY))
+def test_tiny_strength_is_continuous_and_probe_changes_keypoints(name):
+    """1e-9 of the probe stays within 1e-6 mm of the starting model; 4 probes move h or r_a."""
+    effect = get_effect(name)
+    patch = Patch(40.0, 0.8)
+    base = _kp(solve(patch, FAST))
+    tiny = tuple(1e-9 * p.probe for p in effect.parameters)
+    kp_tiny = _kp(solve_effects(patch, FAST, {name: tiny}))
+    np.testing.assert_allclose(kp_tiny, base, atol=1e-6)
+    big = tuple(4 * p.probe for p in effect.parameters)
+    sol = solve_effects(patch, FAST, {name: big})
+    assert sol.converged
+    kp = _kp(sol)
+    assert max(abs(kp[0] - base[0]), abs(kp[1] - base[1])) > 0.05
+
+
+def test_grid_effects_leave_the_fabric_and_p1_alone():
+    grid = make_grid(Patch(40.0, 1.0), FAST)
+    g2 = get_effect("fill_exponent").grid(grid, Patch(40.0, 1.0), FAST, (1.0,))
+    np.testing.assert_array_equal(g2.lam, grid.lam)          # p = 1: p^delta = 1
+    grid = make_grid(Patch(40.0, 0.7), FAST)
+    g2 = get_effect("fill_exponent").grid(grid, Patch(40.0, 0.7), FAST, (1.0,))
+    assert g2.lam[0] == pytest.approx(1 + 0.7 * 0.7 ** 3)
+    np.testing.assert_array_equal(g2.lam[grid.n_inside:], 1.0)
+    g3 = get_effect("boundary_transition").grid(grid, Patch(40.0, 0.7), FAST, (4.0,))
+    assert g3.lam[0] == grid.lam[0] and g3.lam[-1] == 1.0
+    assert np.all(np.diff(g3.lam) <= 0)
+    # the ramp is centred: the embroidered excess is conserved
+    assert np.sum(g3.lam - 1) == pytest.approx(np.sum(grid.lam - 1), rel=1e-12)
+    m = get_effect("prestretch_loss").material(FAST, (0.5,))
+    assert m.eta == pytest.approx(1.35)
+
+
+def test_registry_rejects_bad_effects_and_names():
+    assert get_effect("hardening") is LIBRARY["hardening"]
+    with pytest.raises(InvalidInputError, match="'gravity' is not in the library"):
+        get_effect("gravity")
+    assert "gravity_sag" not in REGISTRY
+    with pytest.raises(InvalidInputError, match="already registered"):
+        register_effect(Effect("hardening", "x", "x", (EffectParameter("a", "1", 0, 1, 0.1, (0.1, 0.2)),),
+                               material=lambda m, v: m))
+    with pytest.raises(InvalidInputError, match="one or two parameters"):
+        Effect("x", "x", "x", (), material=lambda m, v: m)
+    with pytest.raises(InvalidInputError, match="changes nothing"):
+        Effect("x", "x", "x", (EffectParameter("a", "1", 0, 1, 0.1, (0.1, 0.2)),))
+    with pytest.raises(InvalidInputError, match="outside"):
+        get_effect("hoop_bending").values((-1.0,))
+    with pytest.raises(InvalidInputError, match="unknown parameter"):
+        get_effect("hoop_bending").values({"nu": 0.3})
+
+
+def test_registering_a_new_effect_takes_a_few_lines():
+    """The documented recipe (docs/discovery.md): an effect that softens the fabric's hoop
+    stiffness, as a material change, registered and then solvable by name."""
+    effect = Effect(
+        name="test_soft_hoop", summary="softer k_theta_fab", physics="k_theta_fab (1 - s)",
+        parameters=(EffectParameter("s", "1", 0.0, 0.9, probe=0.1, hidden=(0.3, 0.5)),),
+        material=lambda m, v: m.replace(k_theta_fab=m.k_theta_fab * (1 - v[0])))
+    register_effect(effect)
+    try:
+        sol = solve_effects(Patch(40.0, 0.8), FAST, {"test_soft_hoop": (0.5,)})
+        assert sol.material.k_theta_fab == pytest.approx(0.25)
+    finally:
+        REGISTRY.pop("test_soft_hoop")
