@@ -75,6 +75,34 @@ def _add_length_hessian(H, off, k, ur, uz, l):
 
 
 @njit(cache=True)
+def hinge_hessian(H, C, V, W, c, FX, FY, FD, hess_x, hess_dot, m0, m1, la, lb,
+                  uar, uaz, ubr, ubz):
+    """The chain rule of a hinge's Hessian, shared by every hinge energy: with C[:4, :4] the
+    second derivatives in the hinge's intermediate variables and V their Jacobian, completes C
+    (the cross terms of D and Y, weighted FD and FY), and writes the lower triangle of
+    H = c (V^T C V + FX Hess x + FY Hess(a.b)) plus the Hessians of the two segment lengths."""
+    C[4, 6] = C[6, 4] = FD       # Hess D contains grad(rbar_i) x grad|a| + transpose
+    C[5, 7] = C[7, 5] = FD
+    C[6, 7] = C[7, 6] = FY       # Hess Y contains grad|a| x grad|b| + transpose
+    ca = FD * m0 + FY * lb       # coefficient of Hess |a|
+    cb = FD * m1 + FY * la
+    for k in range(8):
+        for s in range(6):
+            acc = 0.0
+            for m in range(8):
+                acc += C[k, m] * V[m, s]
+            W[k, s] = acc
+    for p in range(6):
+        for s in range(p + 1):
+            acc = FX * hess_x[p, s] + FY * hess_dot[p, s]
+            for k in range(8):
+                acc += V[k, p] * W[k, s]
+            H[p, s] = c * acc
+    _add_length_hessian(H, 0, c * ca, uar, uaz, la)
+    _add_length_hessian(H, 2, c * cb, ubr, ubz, lb)
+
+
+@njit(cache=True)
 def _kernel(r, z, w, grad, hb, want_h, hess_x, hess_dot):
     V = np.zeros((8, 6))    # gradients of rho, D, X, Y, rbar_i, rbar_i+1, |a|, |b|
     C = np.zeros((8, 8))    # matching second-order coefficients
@@ -122,25 +150,8 @@ def _kernel(r, z, w, grad, hb, want_h, hess_x, hess_dot):
             C[2, 2] = 2.0 * rho * rho * q
             C[2, 3] = C[3, 2] = -2.0 * FX * iY
             C[3, 3] = 6.0 * F * iY * iY
-            C[4, 6] = C[6, 4] = FD       # Hess D contains grad(rbar_i) x grad|a| + transpose
-            C[5, 7] = C[7, 5] = FD
-            C[6, 7] = C[7, 6] = FY       # Hess Y contains grad|a| x grad|b| + transpose
-            ca = FD * m0 + FY * lb       # coefficient of Hess |a|
-            cb = FD * m1 + FY * la
-            for k in range(8):
-                for s in range(6):
-                    acc = 0.0
-                    for m in range(8):
-                        acc += C[k, m] * V[m, s]
-                    W[k, s] = acc
-            for p in range(6):
-                for s in range(p + 1):
-                    acc = FX * hess_x[p, s] + FY * hess_dot[p, s]
-                    for k in range(8):
-                        acc += V[k, p] * W[k, s]
-                    H[p, s] = c * acc
-            _add_length_hessian(H, 0, c * ca, uar, uaz, la)
-            _add_length_hessian(H, 2, c * cb, ubr, ubz, lb)
+            hinge_hessian(H, C, V, W, c, FX, FY, FD, hess_x, hess_dot, m0, m1, la, lb,
+                          uar, uaz, ubr, ubz)
         add_local(grad, hb, 2 * i, g, H, 6, want_h)
     return E
 

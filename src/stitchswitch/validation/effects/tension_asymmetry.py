@@ -24,7 +24,7 @@ import math
 import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.terms.bending import HESS_DOT, HESS_X
+from stitchswitch.reduced.terms.bending import HESS_DOT, HESS_X, hinge_hessian
 from stitchswitch.reduced.terms.segment import NO_HESSIAN, add_local
 from stitchswitch.validation.effects.registry import Effect, EffectParameter, register_effect
 
@@ -40,21 +40,6 @@ def hinge_coefficients(grid, kappa_per_mm: float, fill: float):
     theta0 = -kappa_per_mm * fill ** 2 * grid.lam[:n_h] * grid.dr_mm
     w = grid.w_b * grid.bending_scale * g / grid.n_nodes
     return np.ascontiguousarray(w), np.ascontiguousarray(np.tan(0.5 * theta0))
-
-
-@njit(cache=True)
-def _add_length_hessian(H, off, k, ur, uz, l):
-    prr, prz, pzz = k * (1.0 - ur * ur) / l, -k * ur * uz / l, k * (1.0 - uz * uz) / l
-    H[off, off] += prr
-    H[off + 1, off] += prz
-    H[off + 1, off + 1] += pzz
-    H[off + 2, off] -= prr
-    H[off + 2, off + 1] -= prz
-    H[off + 3, off] -= prz
-    H[off + 3, off + 1] -= pzz
-    H[off + 2, off + 2] += prr
-    H[off + 3, off + 2] += prz
-    H[off + 3, off + 3] += pzz
 
 
 @njit(cache=True)
@@ -115,25 +100,8 @@ def _kernel(r, z, w, t0, grad, hb, want_g, want_h, hess_x, hess_dot):
             C[2, 2] = 0.0
             C[2, 3] = C[3, 2] = A * GXY
             C[3, 3] = A * GYY
-            C[4, 6] = C[6, 4] = FD       # Hess D contains grad(rbar_i) x grad|a| + transpose
-            C[5, 7] = C[7, 5] = FD
-            C[6, 7] = C[7, 6] = FY       # Hess Y contains grad|a| x grad|b| + transpose
-            ca = FD * m0 + FY * lb       # coefficient of Hess |a|
-            cb = FD * m1 + FY * la
-            for k in range(8):
-                for s in range(6):
-                    acc = 0.0
-                    for m in range(8):
-                        acc += C[k, m] * V[m, s]
-                    W[k, s] = acc
-            for p in range(6):
-                for s in range(p + 1):
-                    acc = FX * hess_x[p, s] + FY * hess_dot[p, s]
-                    for k in range(8):
-                        acc += V[k, p] * W[k, s]
-                    H[p, s] = c * acc
-            _add_length_hessian(H, 0, c * ca, uar, uaz, la)
-            _add_length_hessian(H, 2, c * cb, ubr, ubz, lb)
+            hinge_hessian(H, C, V, W, c, FX, FY, FD, hess_x, hess_dot, m0, m1, la, lb,
+                          uar, uaz, ubr, ubz)
         add_local(grad, hb, 2 * i, g, H, 6, want_h)
     return E
 
