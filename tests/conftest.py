@@ -22,3 +22,20 @@ def random_state(grid, seed, slack=True):
     drops[0] = 0.0
     z = np.concatenate([np.cumsum(drops[::-1])[::-1], [0.0]])
     return r, z
+
+
+def pack(r, z):
+    """Interleave r and z into the solver's dof vector (r0, z0, r1, z1, ...)."""
+    x = np.empty(2 * r.size)
+    x[0::2], x[1::2] = r, z
+    return x
+
+
+def fd_gradient(f, x, h=1e-6):
+    """Central finite-difference gradient of the scalar function f at x."""
+    g = np.empty_like(x)
+    for k in range(x.size):
+        e = np.zeros_like(x)
+        e[k] = h
+        g[k] = (f(x + e) - f(x - e)) / (2 * h)
+    return g

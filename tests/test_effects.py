@@ -12,7 +12,7 @@ from stitchswitch.validation.effects import (LIBRARY, Effect, EffectParameter, c
                                              get_effect, register_effect, solve_effects)
 from stitchswitch.validation.effects import gravity_sag, hardening, hoop_bending, tension_asymmetry
 from stitchswitch.validation.effects.registry import LIBRARY as REGISTRY
-from tests.conftest import random_state
+from tests.conftest import fd_gradient as _fd_gradient, pack as _pack, random_state
 
 FAST = DEFAULT_MATERIAL.replace(n_nodes=120, dr_max_mm=1.0)
 PATCH = Patch(20.0, 0.8)
@@ -22,20 +22,6 @@ def _kp(sol):
     k = sol.keypoints
     return np.array([k.h_mm, k.r_a_mm, k.z_a_mm, k.r_b_mm, k.z_b_mm])
 
-
-def _pack(r, z):
-    x = np.empty(2 * r.size)
-    x[0::2], x[1::2] = r, z
-    return x
-
-
-def _fd_gradient(f, x, h=1e-6):
-    g = np.empty_like(x)
-    for k in range(x.size):
-        e = np.zeros_like(x)
-        e[k] = h
-        g[k] = (f(x + e) - f(x - e)) / (2 * h)
-    return g
 
 
 NEW_TERMS = {

@@ -6,24 +6,10 @@ from stitchswitch.reduced import assembly
 from stitchswitch.reduced.discretization import make_grid
 from stitchswitch.reduced.params import DEFAULT_MATERIAL, Patch
 from stitchswitch.reduced.terms import ALL_TERMS, hardening
-from tests.conftest import random_state
+from tests.conftest import fd_gradient as _fd_gradient, pack as _pack, random_state
 
 TERMS = {t.__name__.rsplit(".", 1)[1]: t for t in ALL_TERMS}
 
-
-def _pack(r, z):
-    x = np.empty(2 * r.size)
-    x[0::2], x[1::2] = r, z
-    return x
-
-
-def _fd_gradient(f, x, h=1e-6):
-    g = np.empty_like(x)
-    for k in range(x.size):
-        e = np.zeros_like(x)
-        e[k] = h
-        g[k] = (f(x + e) - f(x - e)) / (2 * h)
-    return g
 
 
 @pytest.mark.parametrize("name", sorted(TERMS))

@@ -75,6 +75,30 @@ def _add_length_hessian(H, off, k, ur, uz, l):
 
 
 @njit(cache=True)
+def hinge_gradient(g, V, c, Fr, FD, FX, FY, ar, az, br, bz, la, lb, m0, m1):
+    """The chain rule of a hinge's gradient, shared by every hinge energy F(rho, D, X, Y) with
+    partial derivatives Fr, FD, FX, FY: writes g = c dF/dx over the six local dofs and the
+    Jacobian V of the intermediate variables (rho, D, X, Y, rbar_i, rbar_i+1, |a|, |b|);
+    returns the unit vectors of the two segments (for ``hinge_hessian``)."""
+    uar, uaz, ubr, ubz = ar / la, az / la, br / lb, bz / lb
+    dla = (-uar, -uaz, uar, uaz, 0.0, 0.0)
+    dlb = (0.0, 0.0, -ubr, -ubz, ubr, ubz)
+    dX = (-bz, br, bz + az, -br - ar, -az, ar)
+    dS = (-br, -bz, br - ar, bz - az, ar, az)
+    gm0 = (0.5, 0.0, 0.5, 0.0, 0.0, 0.0)
+    gm1 = (0.0, 0.0, 0.5, 0.0, 0.5, 0.0)
+    for p in range(6):
+        dY = lb * dla[p] + la * dlb[p] + dS[p]
+        dD = m0 * dla[p] + m1 * dlb[p] + la * gm0[p] + lb * gm1[p]
+        g[p] = c * (FD * dD + FX * dX[p] + FY * dY)
+        V[1, p], V[2, p], V[3, p] = dD, dX[p], dY
+        V[4, p], V[5, p], V[6, p], V[7, p] = gm0[p], gm1[p], dla[p], dlb[p]
+    g[2] += c * Fr
+    V[0, 2] = 1.0
+    return uar, uaz, ubr, ubz
+
+
+@njit(cache=True)
 def hinge_hessian(H, C, V, W, c, FX, FY, FD, hess_x, hess_dot, m0, m1, la, lb,
                   uar, uaz, ubr, ubz):
     """The chain rule of a hinge's Hessian, shared by every hinge energy: with C[:4, :4] the
@@ -124,21 +148,8 @@ def _kernel(r, z, w, grad, hb, want_h, hess_x, hess_dot):
         Fr, FD, FX, FY = 2.0 * rho * X * X * q, -F * iD, 2.0 * rho * rho * X * q, -2.0 * F * iY
         c = w[i]
         E += c * F
-        uar, uaz, ubr, ubz = ar / la, az / la, br / lb, bz / lb
-        dla = (-uar, -uaz, uar, uaz, 0.0, 0.0)
-        dlb = (0.0, 0.0, -ubr, -ubz, ubr, ubz)
-        dX = (-bz, br, bz + az, -br - ar, -az, ar)
-        dS = (-br, -bz, br - ar, bz - az, ar, az)
-        gm0 = (0.5, 0.0, 0.5, 0.0, 0.0, 0.0)
-        gm1 = (0.0, 0.0, 0.5, 0.0, 0.5, 0.0)
-        for p in range(6):
-            dY = lb * dla[p] + la * dlb[p] + dS[p]
-            dD = m0 * dla[p] + m1 * dlb[p] + la * gm0[p] + lb * gm1[p]
-            g[p] = c * (FD * dD + FX * dX[p] + FY * dY)
-            V[1, p], V[2, p], V[3, p] = dD, dX[p], dY
-            V[4, p], V[5, p], V[6, p], V[7, p] = gm0[p], gm1[p], dla[p], dlb[p]
-        g[2] += c * Fr
-        V[0, 2] = 1.0
+        uar, uaz, ubr, ubz = hinge_gradient(g, V, c, Fr, FD, FX, FY, ar, az, br, bz, la, lb,
+                                            m0, m1)
         if want_h:
             C[0, 0] = 2.0 * X * X * q
             C[0, 1] = C[1, 0] = -Fr * iD

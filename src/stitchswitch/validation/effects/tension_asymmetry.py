@@ -24,7 +24,7 @@ import math
 import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.terms.bending import HESS_DOT, HESS_X, hinge_hessian
+from stitchswitch.reduced.terms.bending import HESS_DOT, HESS_X, hinge_gradient, hinge_hessian
 from stitchswitch.reduced.terms.segment import NO_HESSIAN, add_local
 from stitchswitch.validation.effects.registry import Effect, EffectParameter, register_effect
 
@@ -74,21 +74,8 @@ def _kernel(r, z, w, t0, grad, hb, want_g, want_h, hess_x, hess_dot):
         if not want_g:
             continue
         Fr, FD, FX, FY = 2.0 * rho * G * iD, -F * iD, A * GX, A * GY
-        uar, uaz, ubr, ubz = ar / la, az / la, br / lb, bz / lb
-        dla = (-uar, -uaz, uar, uaz, 0.0, 0.0)
-        dlb = (0.0, 0.0, -ubr, -ubz, ubr, ubz)
-        dX = (-bz, br, bz + az, -br - ar, -az, ar)
-        dS = (-br, -bz, br - ar, bz - az, ar, az)
-        gm0 = (0.5, 0.0, 0.5, 0.0, 0.0, 0.0)
-        gm1 = (0.0, 0.0, 0.5, 0.0, 0.5, 0.0)
-        for p in range(6):
-            dY = lb * dla[p] + la * dlb[p] + dS[p]
-            dD = m0 * dla[p] + m1 * dlb[p] + la * gm0[p] + lb * gm1[p]
-            g[p] = c * (FD * dD + FX * dX[p] + FY * dY)
-            V[1, p], V[2, p], V[3, p] = dD, dX[p], dY
-            V[4, p], V[5, p], V[6, p], V[7, p] = gm0[p], gm1[p], dla[p], dlb[p]
-        g[2] += c * Fr
-        V[0, 2] = 1.0
+        uar, uaz, ubr, ubz = hinge_gradient(g, V, c, Fr, FD, FX, FY, ar, az, br, bz, la, lb,
+                                            m0, m1)
         if want_h:
             C[0, 0] = 2.0 * G * iD
             C[0, 1] = C[1, 0] = -2.0 * rho * G * iD * iD
