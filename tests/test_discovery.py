@@ -2,7 +2,7 @@
 synthetic generator, and a reduced-size proof on data with a hidden effect (and a null case).
 
 The proof runs on a coarse discretization (dR_max = 1 mm, 80 nodes), 9 training designs and
-noise at 30 % of the reference dataset's; the full-size proof is benchmarks/bench_discovery.py.
+noise at 30 % of the reference dataset's; the full-size proof is benchmarks/bench_discover.py.
 """
 import importlib.util
 import pathlib

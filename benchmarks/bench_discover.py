@@ -11,13 +11,28 @@ runs with its default settings from the starting material, not told the source.
 Reported per case: the source and its strength, the named effect and fitted strength, the
 validation MAE (against the noisy rows) before and after, the *gap* before and after (MAE of
 the predictions against the noise-free truth on the validation designs: what the model gets
-wrong, without the measurement noise no model can remove), time and solves. Summary:
-identification accuracy over the library cases (target >= 90 %), false discoveries on null data
-(target 0) and on the control, median gap reduction of h and r_a, share of library cases whose
-h and r_a gaps fall by >= 50 %, runtime per workflow run (target <= 600 s).
+wrong, without the measurement noise no model can remove), time and solves. Two yardsticks
+that need no guessing:
 
-    python benchmarks/bench_discovery.py [--workers 2] [--per-effect 3] [--null 3] [--no-fem]
-        [--log cases.jsonl] [--json]
+* the **noise floor**: the validation MAE of the noise-free truth itself against the noisy
+  rows (what the exact true model, with the true parameters, scores). No model can go below
+  it, so the largest reduction of the noisy validation MAE that any model can reach is
+  1 - floor / before (the *achievable* reduction);
+* the **oracle fit**: the true model (the hidden effect) fitted to the same noisy training
+  rows by the same least squares, started from the true parameters. Its validation gap is what
+  the noise in 25 training rows leaves even when the search starts at the answer.
+
+Summary: identification accuracy over the library cases (target >= 90 %), false discoveries on
+null data (target 0) and on the control, median gap reduction of h and r_a, share of library
+cases whose h and r_a gaps fall by >= 50 % (and how many of those the oracle halves), the
+noisy-row reduction next to the achievable one, runtime per workflow run (target <= 600 s).
+
+    python benchmarks/bench_discover.py [--workers 2] [--per-effect 3] [--null 3] [--no-fem]
+        [--no-control] [--scale S] [--only ID,...] [--log cases.jsonl] [--json]
+
+``--scale S`` multiplies the drawn strengths (the same seeds; ids get ``-xS``): with
+``--scale 2 --null 0 --no-fem --no-control`` it shows how the noisy-row reduction and its
+achievable bound move when the effects dominate the noise.
 
 ``--log`` appends one JSON line per finished case and skips cases already in it (resume).
 """
@@ -34,20 +49,33 @@ import numpy as np
 QUANT = ("h", "r_a", "z_a", "r_b", "z_b")
 
 
-def cases(per_effect: int, n_null: int, fem: bool):
+def _scaled(name: str, values, scale: float) -> list:
+    """``values`` times ``scale``, kept inside 95 % of the effect's fit bounds."""
+    from stitchswitch.validation.effects import get_effect
+
+    if scale == 1.0:
+        return list(values)
+    params = get_effect(name).parameters
+    return [float(f"{min(max(v * scale, 0.95 * p.lower), 0.95 * p.upper):.4g}")
+            for v, p in zip(values, params)]
+
+
+def cases(per_effect: int, n_null: int, fem: bool, scale: float = 1.0, control: bool = True):
     from stitchswitch.validation.discovery_synthetic import draw_values
     from stitchswitch.validation.effects import LIBRARY
 
     out, seed = [], 100
+    tag = "" if scale == 1.0 else f"-x{scale:g}"
     for name in LIBRARY:
         for k in range(per_effect):
             seed += 1
-            out.append({"id": f"{name}-{k + 1}", "source": name, "seed": seed,
-                        "values": list(draw_values(name, np.random.default_rng([seed, 1])))})
+            values = draw_values(name, np.random.default_rng([seed, 1]))
+            out.append({"id": f"{name}-{k + 1}{tag}", "source": name, "seed": seed,
+                        "values": _scaled(name, values, scale)})
     for k in range(n_null):
         seed += 1
         out.append({"id": f"null-{k + 1}", "source": None, "seed": seed, "values": []})
-    for k in range(2):
+    for k in range(2 if control else 0):
         seed += 1
         out.append({"id": f"gravity_sag-{k + 1}", "source": "gravity_sag", "seed": seed,
                     "values": list(draw_values("gravity_sag", np.random.default_rng([seed, 1])))})
@@ -60,6 +88,7 @@ def cases(per_effect: int, n_null: int, fem: bool):
 def run_case(case: dict, executor) -> dict:
     from stitchswitch.validation.discovery import discover
     from stitchswitch.validation.discovery_synthetic import START_MATERIAL, dataset_text
+    from stitchswitch.validation.effects import LIBRARY
     from stitchswitch.validation.measured import parse_measurements
 
     t0 = time.perf_counter()
@@ -76,6 +105,8 @@ def run_case(case: dict, executor) -> dict:
     gap_b = np.mean(np.abs(disc.before[va] - clean[va]), axis=0)
     gap_a = np.mean(np.abs(disc.after[va] - clean[va]), axis=0)
     rank = {r["effect"]: r["rank"] for r in s["ranking"]}
+    floor = np.mean(np.abs(clean[va] - disc.measured[va]), axis=0)
+    oracle = _oracle(data, clean, src, vals, executor) if src in LIBRARY else None
     return {
         **case, "named": s["missing_effect"], "significant": s["significant"],
         "fitted": s["effect_parameters"], "decision": s["decision"],
@@ -90,8 +121,37 @@ def run_case(case: dict, executor) -> dict:
         "gap_before": dict(zip(QUANT, map(float, gap_b))),
         "gap_after": dict(zip(QUANT, map(float, gap_a))),
         "systematic_before": [q for q in QUANT if s["residuals_before"][q]["systematic"]],
+        "noise_floor": dict(zip(QUANT, map(float, floor))),
+        "oracle": oracle,
         "seconds": seconds, "data_seconds": t1 - t0, "solves": disc.solves,
     }
+
+
+def _oracle(data, clean, source, values, executor) -> dict:
+    """The hidden effect's model fitted to the noisy training rows from the true parameters
+    (the workflow's least squares and step budget): its validation gap and noisy MAE."""
+    from stitchswitch.validation.discovery_eval import Evaluator
+    from stitchswitch.validation.discovery_fit import fit
+    from stitchswitch.validation.discovery import DiscoveryConfig
+    from stitchswitch.validation.discovery_space import BASE_FREE, ModelSpec
+    from stitchswitch.validation.discovery_synthetic import START_MATERIAL, TRUE_MATERIAL
+
+    split = np.array([r.split for r in data.rows])
+    tr, va = split == "train", split == "val"
+    designs = [(float(r.d_mm), float(r.fill)) for r in data.rows]
+    d_tr = [x for x, t in zip(designs, tr) if t]
+    d_va = [x for x, t in zip(designs, va) if t]
+    measured = data.keypoints()
+    spec = ModelSpec(START_MATERIAL, source, BASE_FREE)
+    ev = Evaluator(executor)
+    f = fit(spec, ev, d_tr, measured[tr], spec.encode(TRUE_MATERIAL, values),
+            max_nfev=DiscoveryConfig().fit_max_nfev)
+    pred = ev.one(spec, f.x, d_va)
+    return {"effect_parameters": dict(zip(spec.names[len(BASE_FREE):],
+                                          spec.decode(f.x)[1][source])),
+            "train_mse_mm2": f.mse_mm2,
+            "gap": dict(zip(QUANT, map(float, np.mean(np.abs(pred - clean[va]), axis=0)))),
+            "val_mae": dict(zip(QUANT, map(float, np.mean(np.abs(pred - measured[va]), axis=0))))}
 
 
 def _red(before, after):
@@ -111,6 +171,23 @@ def summarize(results: list) -> dict:
                  for q in ("h", "r_a")}
     both = [r for r in correct if all(_red(r["gap_before"][q], r["gap_after"][q]) >= 0.5
                                       for q in ("h", "r_a"))]
+    with_oracle = [r for r in lib if r.get("oracle")]
+    oracle_both = [r for r in with_oracle
+                   if all(_red(r["gap_before"][q], r["oracle"]["gap"][q]) >= 0.5
+                          for q in ("h", "r_a"))]
+    achievable = {q: [_red(r["val_mae_before"][q], r["noise_floor"][q]) for r in lib
+                      if "noise_floor" in r] for q in ("h", "r_a")}
+    ach_both = [r for r in lib if "noise_floor" in r and
+                all(_red(r["val_mae_before"][q], r["noise_floor"][q]) >= 0.5 for q in ("h", "r_a"))]
+    # share of the achievable noisy-row reduction that the workflow realizes, where there is
+    # one to realize (before at least 0.1 mm above the floor)
+    realized = {q: [(r["val_mae_before"][q] - r["val_mae_after"][q]) /
+                    (r["val_mae_before"][q] - r["noise_floor"][q]) for r in correct
+                    if "noise_floor" in r and r["val_mae_before"][q] - r["noise_floor"][q] >= 0.1]
+                for q in ("h", "r_a")}
+    # how close the workflow's gap comes to the oracle's (identified cases with an oracle)
+    near = [r for r in correct if r.get("oracle") and
+            all(r["gap_after"][q] <= r["oracle"]["gap"][q] + 0.25 for q in ("h", "r_a"))]
     secs = [r["seconds"] for r in results]
     per_effect = {n: f"{sum(r['named'] == n for r in lib if r['source'] == n)}/"
                      f"{sum(r['source'] == n for r in lib)}" for n in LIBRARY}
@@ -130,6 +207,16 @@ def summarize(results: list) -> dict:
         "median_val_mae_reduction_noisy": {q: float(np.median(v)) if v else float("nan")
                                            for q, v in red_noisy.items()},
         "cases_h_and_r_a_gap_halved": f"{len(both)}/{len(correct)}",
+        "oracle_h_and_r_a_gap_halved": f"{len(oracle_both)}/{len(with_oracle)}",
+        "cases_within_0.25mm_of_oracle_gap": f"{len(near)}/{len(correct)}",
+        "median_achievable_val_mae_reduction_noisy": {
+            q: float(np.median(v)) if v else float("nan") for q, v in achievable.items()},
+        "max_achievable_val_mae_reduction_noisy": {
+            q: float(np.max(v)) if v else float("nan") for q, v in achievable.items()},
+        "cases_where_halving_noisy_h_and_r_a_is_possible": f"{len(ach_both)}/{len(lib)}",
+        "median_share_of_achievable_reduction_realized": {
+            q: float(np.median(v)) if v else float("nan") for q, v in realized.items()},
+        "cases_with_achievable_reduction": {q: len(v) for q, v in realized.items()},
         "seconds_median": float(np.median(secs)) if secs else float("nan"),
         "seconds_max": float(np.max(secs)) if secs else float("nan"),
         "targets": {"accuracy_ge_0.9": bool(lib) and len(correct) / len(lib) >= 0.9,
@@ -138,9 +225,15 @@ def summarize(results: list) -> dict:
     }
 
 
+def _pair(q) -> str:
+    """'h r_a' of a per-quantity dict, or a dash."""
+    return f"{q['h']:5.2f} {q['r_a']:5.2f}" if q else f"{'-':>11s}"
+
+
 def table(results: list, summary: dict) -> str:
     lines = [f"{'case':22s} {'strength':>10s} {'named':20s} {'p':>8s} {'gap h':>13s} "
-             f"{'gap r_a':>13s} {'val MAE h':>13s} {'time':>6s}"]
+             f"{'gap r_a':>13s} {'oracle':>11s} {'val MAE h':>13s} {'val MAE r_a':>13s} "
+             f"{'floor':>11s} {'time':>6s}"]
     for r in results:
         st = ", ".join(f"{v:.4g}" for v in r["values"]) or "-"
         fit = ", ".join(f"{v:.3g}" for v in r["fitted"].values())
@@ -149,7 +242,10 @@ def table(results: list, summary: dict) -> str:
             f"{r['id']:22s} {st:>10s} {named[:20]:20s} {r['top_p']:8.2g} "
             f"{r['gap_before']['h']:5.2f}->{r['gap_after']['h']:5.2f} "
             f"{r['gap_before']['r_a']:5.2f}->{r['gap_after']['r_a']:5.2f} "
-            f"{r['val_mae_before']['h']:5.2f}->{r['val_mae_after']['h']:5.2f} {r['seconds']:5.0f}s")
+            f"{_pair((r.get('oracle') or {}).get('gap'))} "
+            f"{r['val_mae_before']['h']:5.2f}->{r['val_mae_after']['h']:5.2f} "
+            f"{r['val_mae_before']['r_a']:5.2f}->{r['val_mae_after']['r_a']:5.2f} "
+            f"{_pair(r.get('noise_floor'))} {r['seconds']:5.0f}s")
     s = summary
     lines += ["",
               f"identification accuracy: {s['identified']}/{s['library_cases']} = "
@@ -162,9 +258,25 @@ def table(results: list, summary: dict) -> str:
               f"h {100 * s['median_gap_reduction']['h']:.0f} %, r_a "
               f"{100 * s['median_gap_reduction']['r_a']:.0f} %; h and r_a both halved in "
               f"{s['cases_h_and_r_a_gap_halved']}",
+              f"oracle (true model fitted from the true parameters): h and r_a gaps both "
+              f"halved in {s['oracle_h_and_r_a_gap_halved']}; workflow within 0.25 mm of the "
+              f"oracle's gap (h and r_a) in {s['cases_within_0.25mm_of_oracle_gap']}",
               f"median val MAE reduction against the noisy rows: h "
               f"{100 * s['median_val_mae_reduction_noisy']['h']:.0f} %, r_a "
-              f"{100 * s['median_val_mae_reduction_noisy']['r_a']:.0f} %",
+              f"{100 * s['median_val_mae_reduction_noisy']['r_a']:.0f} %; achievable (down to "
+              f"the noise floor) median h "
+              f"{100 * s['median_achievable_val_mae_reduction_noisy']['h']:.0f} %, r_a "
+              f"{100 * s['median_achievable_val_mae_reduction_noisy']['r_a']:.0f} % (max h "
+              f"{100 * s['max_achievable_val_mae_reduction_noisy']['h']:.0f} %, r_a "
+              f"{100 * s['max_achievable_val_mae_reduction_noisy']['r_a']:.0f} %); a 50 % "
+              f"reduction of both is possible at all in "
+              f"{s['cases_where_halving_noisy_h_and_r_a_is_possible']} library cases",
+              f"share of the achievable noisy-row reduction realized (identified cases with "
+              f">= 0.1 mm to gain): median h "
+              f"{100 * s['median_share_of_achievable_reduction_realized']['h']:.0f} % "
+              f"({s['cases_with_achievable_reduction']['h']} cases), r_a "
+              f"{100 * s['median_share_of_achievable_reduction_realized']['r_a']:.0f} % "
+              f"({s['cases_with_achievable_reduction']['r_a']} cases)",
               f"runtime per workflow run: median {s['seconds_median']:.0f} s, max "
               f"{s['seconds_max']:.0f} s (target <= 600 s)"]
     for k, v in s["targets"].items():
@@ -178,14 +290,21 @@ def main(argv=None) -> int:
     ap.add_argument("--per-effect", type=int, default=3)
     ap.add_argument("--null", type=int, default=3)
     ap.add_argument("--no-fem", action="store_true")
+    ap.add_argument("--no-control", action="store_true", help="skip the gravity_sag datasets")
+    ap.add_argument("--scale", type=float, default=1.0,
+                    help="multiply the drawn hidden strengths (kept inside 95 %% of the bounds): "
+                         "how the yardsticks move when the effect dominates the noise")
     ap.add_argument("--only", default=None, help="comma-separated case ids to run")
     ap.add_argument("--log", default=None, help="JSON lines file: append results, skip done cases")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args(argv)
 
+    from stitchswitch.errors import InvalidInputError
     from stitchswitch.executor import make_executor
 
-    todo = cases(args.per_effect, args.null, not args.no_fem)
+    if args.scale <= 0:
+        ap.error(f"--scale: {args.scale!r} must be positive")
+    todo = cases(args.per_effect, args.null, not args.no_fem, args.scale, not args.no_control)
     if args.only:
         keep = set(args.only.split(","))
         todo = [c for c in todo if c["id"] in keep]
@@ -201,18 +320,28 @@ def main(argv=None) -> int:
             if case["id"] in done and done[case["id"]]["seed"] == case["seed"]:
                 results.append(done[case["id"]])
                 continue
-            r = run_case(case, ex if args.workers > 1 else None)
+            try:
+                r = run_case(case, ex if args.workers > 1 else None)
+            except InvalidInputError as exc:       # e.g. a strength whose data do not solve
+                r = {**case, "error": str(exc)}
+                print(f"{r['id']}: no dataset: {exc}", file=sys.stderr, flush=True)
+            else:
+                print(f"{r['id']}: named {r['named']} in {r['seconds']:.0f} s", file=sys.stderr,
+                      flush=True)
             results.append(r)
-            print(f"{r['id']}: named {r['named']} in {r['seconds']:.0f} s", file=sys.stderr,
-                  flush=True)
             if args.log:
                 with open(args.log, "a") as f:
                     f.write(json.dumps(r, default=float) + "\n")
+    failed = [r for r in results if "error" in r]
+    results = [r for r in results if "error" not in r]
     summary = summarize(results)
+    summary["cases_without_data"] = {r["id"]: r["error"] for r in failed}
     if args.json:
         print(json.dumps({"cases": results, "summary": summary}, indent=1, default=float))
     else:
         print(table(results, summary))
+        for cid, why in summary["cases_without_data"].items():
+            print(f"  {cid}: no dataset ({why})")
     return 0 if all(summary["targets"].values()) else 1
 
 
