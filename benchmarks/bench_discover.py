@@ -106,7 +106,7 @@ def run_case(case: dict, executor) -> dict:
     gap_a = np.mean(np.abs(disc.after[va] - clean[va]), axis=0)
     rank = {r["effect"]: r["rank"] for r in s["ranking"]}
     floor = np.mean(np.abs(clean[va] - disc.measured[va]), axis=0)
-    oracle = _oracle(data, clean, src, vals, executor) if src in LIBRARY else None
+    oracle = _oracle(disc, clean, src, vals, executor) if src in LIBRARY else None
     return {
         **case, "named": s["missing_effect"], "significant": s["significant"],
         "fitted": s["effect_parameters"], "decision": s["decision"],
@@ -127,31 +127,34 @@ def run_case(case: dict, executor) -> dict:
     }
 
 
-def _oracle(data, clean, source, values, executor) -> dict:
-    """The hidden effect's model fitted to the noisy training rows from the true parameters
-    (the workflow's least squares and step budget): its validation gap and noisy MAE."""
+def _oracle(disc, clean, source, values, executor) -> dict:
+    """The hidden effect's model fitted to the noisy training rows of ``disc`` (a finished
+    discovery run) from the true parameters (the workflow's least squares and step budget):
+    its validation gap and noisy MAE."""
+    from stitchswitch.validation.discovery import DiscoveryConfig
     from stitchswitch.validation.discovery_eval import Evaluator
     from stitchswitch.validation.discovery_fit import fit
-    from stitchswitch.validation.discovery import DiscoveryConfig
     from stitchswitch.validation.discovery_space import BASE_FREE, ModelSpec
     from stitchswitch.validation.discovery_synthetic import START_MATERIAL, TRUE_MATERIAL
 
-    split = np.array([r.split for r in data.rows])
-    tr, va = split == "train", split == "val"
-    designs = [(float(r.d_mm), float(r.fill)) for r in data.rows]
-    d_tr = [x for x, t in zip(designs, tr) if t]
-    d_va = [x for x, t in zip(designs, va) if t]
-    measured = data.keypoints()
+    tr, va = disc.split == "train", disc.split == "val"
+    designs = np.column_stack([disc.d_mm, disc.fill])
     spec = ModelSpec(START_MATERIAL, source, BASE_FREE)
     ev = Evaluator(executor)
-    f = fit(spec, ev, d_tr, measured[tr], spec.encode(TRUE_MATERIAL, values),
+    f = fit(spec, ev, designs[tr], disc.measured[tr], spec.encode(TRUE_MATERIAL, values),
             max_nfev=DiscoveryConfig().fit_max_nfev)
-    pred = ev.one(spec, f.x, d_va)
+    pred = ev.one(spec, f.x, designs[va])
     return {"effect_parameters": dict(zip(spec.names[len(BASE_FREE):],
                                           spec.decode(f.x)[1][source])),
             "train_mse_mm2": f.mse_mm2,
             "gap": dict(zip(QUANT, map(float, np.mean(np.abs(pred - clean[va]), axis=0)))),
-            "val_mae": dict(zip(QUANT, map(float, np.mean(np.abs(pred - measured[va]), axis=0))))}
+            "val_mae": dict(zip(QUANT, map(float, np.mean(np.abs(pred - disc.measured[va]),
+                                                          axis=0))))}
+
+
+def _per_q(stat, values: dict) -> dict:
+    """{quantity: stat(list)} with NaN for an empty list."""
+    return {q: float(stat(v)) if v else float("nan") for q, v in values.items()}
 
 
 def _red(before, after):
@@ -203,19 +206,15 @@ def summarize(results: list) -> dict:
         "false_discovery_rate": (sum(r["named"] is not None for r in null + ctrl) /
                                  len(null + ctrl)) if null + ctrl else float("nan"),
         "fem_named": [r["named"] for r in fem],
-        "median_gap_reduction": {q: float(np.median(v)) if v else float("nan") for q, v in red.items()},
-        "median_val_mae_reduction_noisy": {q: float(np.median(v)) if v else float("nan")
-                                           for q, v in red_noisy.items()},
+        "median_gap_reduction": _per_q(np.median, red),
+        "median_val_mae_reduction_noisy": _per_q(np.median, red_noisy),
         "cases_h_and_r_a_gap_halved": f"{len(both)}/{len(correct)}",
         "oracle_h_and_r_a_gap_halved": f"{len(oracle_both)}/{len(with_oracle)}",
         "cases_within_0.25mm_of_oracle_gap": f"{len(near)}/{len(correct)}",
-        "median_achievable_val_mae_reduction_noisy": {
-            q: float(np.median(v)) if v else float("nan") for q, v in achievable.items()},
-        "max_achievable_val_mae_reduction_noisy": {
-            q: float(np.max(v)) if v else float("nan") for q, v in achievable.items()},
+        "median_achievable_val_mae_reduction_noisy": _per_q(np.median, achievable),
+        "max_achievable_val_mae_reduction_noisy": _per_q(np.max, achievable),
         "cases_where_halving_noisy_h_and_r_a_is_possible": f"{len(ach_both)}/{len(lib)}",
-        "median_share_of_achievable_reduction_realized": {
-            q: float(np.median(v)) if v else float("nan") for q, v in realized.items()},
+        "median_share_of_achievable_reduction_realized": _per_q(np.median, realized),
         "cases_with_achievable_reduction": {q: len(v) for q, v in realized.items()},
         "seconds_median": float(np.median(secs)) if secs else float("nan"),
         "seconds_max": float(np.max(secs)) if secs else float("nan"),
