@@ -1,4 +1,4 @@
-"""Benchmark: a full calibration on the paper's 25 training samples (issue 4 target: <= 10 min).
+"""Benchmark: a full calibration on the paper's 25 training samples (target: <= 10 min).
 
 Data: the shipped SYNTHETIC dataset (scripts/make_measured_dataset.py: keypoints of a known
 "true" material plus measurement noise). The calibration starts from the default material with
@@ -39,8 +39,8 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
 
     from stitchswitch.executor import make_executor
-    from stitchswitch.reduced import calibration as cal
-    from stitchswitch.reduced.params import DEFAULT_MATERIAL
+    from stitchswitch.reduced.calibration import evolution as cal
+    from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
     from stitchswitch.validation.measured import load_measurements
 
     data = load_measurements(ROOT / "src" / "stitchswitch" / "data" / "measured_synthetic.csv")

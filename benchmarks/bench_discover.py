@@ -1,11 +1,11 @@
-"""Benchmark: discrepancy discovery on SYNTHETIC data with hidden effects (issue 6).
+"""Benchmark: discrepancy discovery on SYNTHETIC data with hidden effects.
 
 For every effect of the library, ``--per-effect`` (default 3) datasets with a random strength
 from the effect's documented hidden range; ``--null`` datasets without any hidden effect; two
 datasets with ``gravity_sag`` (a control effect that is NOT in the library: naming anything is a
 false discovery); one dataset from the finite-element shell reference with hoop bending and
 Poisson coupling (``--no-fem`` skips it). Each dataset has the paper's 25 train + 28 val designs
-and the synthetic reference dataset's noise (``validation.discovery_synthetic``). The workflow
+and the synthetic reference dataset's noise (``validation.discovery.synthetic``). The workflow
 runs with its default settings from the starting material, not told the source.
 
 Reported per case: the source and its strength, the named effect and fitted strength, the
@@ -51,7 +51,7 @@ QUANT = ("h", "r_a", "z_a", "r_b", "z_b")
 
 def _scaled(name: str, values, scale: float) -> list:
     """``values`` times ``scale``, kept inside 95 % of the effect's fit bounds."""
-    from stitchswitch.validation.effects import get_effect
+    from stitchswitch.validation.discovery.effects import get_effect
 
     if scale == 1.0:
         return list(values)
@@ -61,8 +61,8 @@ def _scaled(name: str, values, scale: float) -> list:
 
 
 def cases(per_effect: int, n_null: int, fem: bool, scale: float = 1.0, control: bool = True):
-    from stitchswitch.validation.discovery_synthetic import draw_values
-    from stitchswitch.validation.effects import LIBRARY
+    from stitchswitch.validation.discovery.synthetic import draw_values
+    from stitchswitch.validation.discovery.effects import LIBRARY
 
     out, seed = [], 100
     tag = "" if scale == 1.0 else f"-x{scale:g}"
@@ -86,9 +86,9 @@ def cases(per_effect: int, n_null: int, fem: bool, scale: float = 1.0, control: 
 
 
 def run_case(case: dict, executor) -> dict:
-    from stitchswitch.validation.discovery import discover
-    from stitchswitch.validation.discovery_synthetic import START_MATERIAL, dataset_text
-    from stitchswitch.validation.effects import LIBRARY
+    from stitchswitch.validation.discovery.workflow import discover
+    from stitchswitch.validation.discovery.synthetic import START_MATERIAL, dataset_text
+    from stitchswitch.validation.discovery.effects import LIBRARY
     from stitchswitch.validation.measured import parse_measurements
 
     t0 = time.perf_counter()
@@ -131,11 +131,11 @@ def _oracle(disc, clean, source, values, executor) -> dict:
     """The hidden effect's model fitted to the noisy training rows of ``disc`` (a finished
     discovery run) from the true parameters (the workflow's least squares and step budget):
     its validation gap and noisy MAE."""
-    from stitchswitch.validation.discovery import DiscoveryConfig
-    from stitchswitch.validation.discovery_eval import Evaluator
-    from stitchswitch.validation.discovery_fit import fit
-    from stitchswitch.validation.discovery_space import BASE_FREE, ModelSpec
-    from stitchswitch.validation.discovery_synthetic import START_MATERIAL, TRUE_MATERIAL
+    from stitchswitch.validation.discovery.workflow import DiscoveryConfig
+    from stitchswitch.validation.discovery.evaluate import Evaluator
+    from stitchswitch.validation.discovery.fit import fit
+    from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
+    from stitchswitch.validation.discovery.synthetic import START_MATERIAL, TRUE_MATERIAL
 
     tr, va = disc.split == "train", disc.split == "val"
     designs = np.column_stack([disc.d_mm, disc.fill])
@@ -162,7 +162,7 @@ def _red(before, after):
 
 
 def summarize(results: list) -> dict:
-    from stitchswitch.validation.effects import LIBRARY
+    from stitchswitch.validation.discovery.effects import LIBRARY
 
     lib = [r for r in results if r["source"] in LIBRARY]
     null = [r for r in results if r["source"] is None]

@@ -1,4 +1,4 @@
-"""Benchmark: one converged shell-reference solve per design (issue 5 target: <= 10 s).
+"""Benchmark: one converged shell-reference solve per design (target: <= 10 s).
 
 Nine designs (d 25, 50, 90 mm x p 0.6, 0.8, 1.0), 80 Hermite elements on the patch, solved two
 ways: Newton from the reduced equilibrium (whose time is reported separately), and the prestretch
@@ -35,7 +35,7 @@ def main(argv=None) -> int:
     from stitchswitch import Patch, solve
     from stitchswitch.fem_reference.continuation import prestretch_continuation
     from stitchswitch.fem_reference.shell import ShellModel
-    from stitchswitch.reduced.keypoints import keypoints_from_profile
+    from stitchswitch.reduced.model.keypoints import keypoints_from_profile
 
     solve(Patch(40, 0.8))
     rows = []

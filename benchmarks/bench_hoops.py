@@ -1,4 +1,4 @@
-"""Benchmark: hoop grouping by MIP (cvxpy + HiGHS) against first-fit decreasing (issue 9).
+"""Benchmark: hoop grouping by MIP (cvxpy + HiGHS) against first-fit decreasing.
 
 Random seeded layouts of 20, 40 and 60 patches, in both modes, on the Janome 550E's hoops:
 
@@ -27,7 +27,7 @@ ETA = 1.7
 
 
 def layout(n: int, seed: int, free: bool):
-    from stitchswitch.layout.hoop_footprints import Footprint, StretchedPiece
+    from stitchswitch.layout.fabrication.grouping.footprints import Footprint, StretchedPiece
     w, h = 420 * ETA, 520 * ETA
     rng = np.random.default_rng(seed)
     dmin, dmax = (30.0, 90.0) if free else (20.0, 70.0)
@@ -45,8 +45,8 @@ def layout(n: int, seed: int, free: bool):
 
 
 def run_one(n, seed, mode, hoops, time_limit_s):
-    from stitchswitch.layout.hoop_grouping import group
-    from stitchswitch.layout.hoop_order import order_hoopings
+    from stitchswitch.layout.fabrication.grouping.group import group
+    from stitchswitch.layout.fabrication.order import order_hoopings
     feet, pieces = layout(n, seed, mode == "free")
     t = time.perf_counter()
     g = group(feet, pieces, hoops, mode, time_limit_s)
@@ -70,7 +70,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
 
     import cvxpy  # noqa: F401  - import time is not grouping time
-    from stitchswitch.layout.machines import builtin_catalogue
+    from stitchswitch.layout.embroidery.machines import builtin_catalogue
     machine = builtin_catalogue().machine("janome-550e")
     hoops = (machine.hoop(args.hoop),) if args.hoop else machine.hoops
     sizes = [int(s) for s in args.sizes.split(",")]

@@ -1,4 +1,4 @@
-"""Benchmark: the design-space map (issue 3 targets).
+"""Benchmark: the design-space map (its targets).
 
 * the full default grid (86 diameters x 51 fills) built in <= 60 s on this 2-core machine,
 * 1,000 off-grid patches queried in <= 50 ms (keypoints and profiles),
@@ -20,7 +20,7 @@ import numpy as np
 FIRST_QUERY = """
 import time
 t = time.perf_counter()
-from stitchswitch.reduced.map_cache import default_map
+from stitchswitch.reduced.design_space.cache import default_map
 q = default_map().query(40.0, 0.8)
 print(time.perf_counter() - t)
 """
@@ -32,8 +32,8 @@ def main(argv=None) -> int:
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args(argv)
 
-    from stitchswitch.reduced import precompute
-    from stitchswitch.reduced.map_cache import default_map
+    from stitchswitch.reduced.design_space import precompute
+    from stitchswitch.reduced.design_space.cache import default_map
 
     t = time.perf_counter()
     dmap = precompute.build(workers=args.workers)

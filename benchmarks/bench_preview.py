@@ -1,4 +1,4 @@
-"""Benchmark: the 3D preview of a 40-patch design rendered offscreen to PNG (issue 10 target:
+"""Benchmark: the 3D preview of a 40-patch design rendered offscreen to PNG (target:
 <= 3 s on this 2-core machine, no GPU).
 
 Measured in fresh interpreters (so the figures include importing pyvista/VTK and creating the
@@ -33,7 +33,7 @@ TARGET_S = 3.0
 PHASES = r"""
 import json, sys, time
 t0 = time.perf_counter()
-from stitchswitch.layout.design_io import load_design
+from stitchswitch.layout.garment.design_io import load_design
 from stitchswitch.preview3d import render
 from stitchswitch.preview3d.scene import build_scene
 from stitchswitch.preview3d.spec import spec_from_design

@@ -1,7 +1,7 @@
 """Benchmark: the certified Newton solver against the paper's projected Adam baseline.
 
 For every design both solvers run cold (no warm start) from the same released state. The
-targets of issue 2 are checked and printed:
+targets are checked and printed:
 
 * on every design the certified solver's energy is no higher than Adam's (relative 1e-9),
 * its residual (projected-gradient certificate) is <= 1e-8,

@@ -3,14 +3,14 @@
 Nothing in it is measured. The keypoints come from the reduced model with ``TRUE_MATERIAL``
 (the synthetic reference dataset's true coefficients, without hardening) plus one hidden source,
 plus Gaussian noise with the reference dataset's sigma, on the paper's 25 train + 28 validation
-designs (``stitchswitch.validation.discovery_synthetic`` documents every choice). The file's
+designs (``stitchswitch.validation.discovery.synthetic`` documents every choice). The file's
 ``# source:`` line says SYNTHETIC and names no effect; the truth is on a separate
 ``# hidden truth`` comment line, which the loader and the workflow do not read.
 
     python scripts/make_discovery_dataset.py OUT.csv --source tension_asymmetry [--values -0.05]
         [--seed 7] [--noise-free]
 
-``--source``: a library effect (``stitchswitch.validation.effects``), ``gravity_sag`` (a control
+``--source``: a library effect (``stitchswitch.validation.discovery.effects``), ``gravity_sag`` (a control
 effect that is not in the library), ``fem_shell`` (the finite-element shell reference with hoop
 bending and Poisson coupling) or ``none``. Without ``--values`` the strength is drawn from the
 effect's documented hidden range with the same seed. Same arguments, same bytes (the file is
@@ -22,8 +22,8 @@ import argparse
 
 import numpy as np
 
-from stitchswitch.atomic import atomic_write_text
-from stitchswitch.validation.discovery_synthetic import dataset_text, draw_values
+from stitchswitch.files.atomic import atomic_write_text
+from stitchswitch.validation.discovery.synthetic import dataset_text, draw_values
 
 
 def build(source: str, values=None, seed: int = 7, noise: bool = True) -> str:

@@ -26,7 +26,7 @@ import pathlib
 
 import numpy as np
 
-from stitchswitch.atomic import atomic_write_text
+from stitchswitch.files.atomic import atomic_write_text
 
 SEED = 2026
 SIGMA_N = 0.06

@@ -29,9 +29,9 @@ import pathlib
 
 import numpy as np
 
-from stitchswitch.atomic import atomic_write_text
-from stitchswitch.reduced.calibration import predict_keypoints
-from stitchswitch.reduced.params import DEFAULT_MATERIAL
+from stitchswitch.files.atomic import atomic_write_text
+from stitchswitch.reduced.calibration.evolution import predict_keypoints
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
 SEED = 2027
 TRUE_CHANGES = {"w_b_emb": 14.0, "w_b_fab": 2.5, "k_r_emb": 1.6, "k_r_fab": 0.6,

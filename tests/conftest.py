@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from stitchswitch.reduced.discretization import make_grid
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.model.discretization import make_grid
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 
 
 @pytest.fixture

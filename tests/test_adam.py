@@ -1,14 +1,15 @@
-"""The paper's projected Adam baseline (stitchswitch.reduced.adam)."""
+"""The paper's projected Adam baseline (stitchswitch.reduced.solvers.adam)."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced import adam, assembly, constraints, continuation
-from stitchswitch.reduced.discretization import make_grid
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Patch
-from stitchswitch.reduced.solve import solve
+from stitchswitch.reduced.solvers import adam, constraints, continuation
+from stitchswitch.reduced.model import assembly
+from stitchswitch.reduced.model.discretization import make_grid
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.solvers.solve import solve
 
 MATERIAL = DEFAULT_MATERIAL.replace(n_nodes=60)
 PATCH = Patch(20, 0.9)

@@ -1,10 +1,10 @@
-"""stitchswitch.atomic: complete file or nothing, and never a stray temporary file."""
+"""stitchswitch.files.atomic: complete file or nothing, and never a stray temporary file."""
 import os
 
 import pytest
 
-from stitchswitch import atomic
-from stitchswitch.atomic import atomic_write_bytes, atomic_write_text
+from stitchswitch.files import atomic
+from stitchswitch.files.atomic import atomic_write_bytes, atomic_write_text
 
 
 def test_writes_and_overwrites(tmp_path):

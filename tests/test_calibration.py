@@ -3,9 +3,9 @@ import numpy as np
 import pytest
 
 from stitchswitch import DEFAULT_MATERIAL, InvalidInputError
-from stitchswitch.reduced import calibration as cal
-from stitchswitch.reduced.params import Patch
-from stitchswitch.reduced.solve import solve
+from stitchswitch.reduced.calibration import evolution as cal
+from stitchswitch.reduced.model.params import Patch
+from stitchswitch.reduced.solvers.solve import solve
 
 TRUE = DEFAULT_MATERIAL.replace(w_b_emb=14.0, k_r_emb=1.6)
 DESIGNS = [(30.0, 0.7), (30.0, 0.9), (50.0, 0.7), (50.0, 0.9), (80.0, 0.8)]

@@ -3,7 +3,7 @@ import json
 from click.testing import CliRunner
 
 from stitchswitch.cli.main import cli
-from stitchswitch.reduced.material_io import load_material
+from stitchswitch.reduced.model.material_io import load_material
 
 SMALL = """# source: synthetic (test rows from the default model)
 sample_id,d_mm,fill,h_mm,r_a_mm,z_a_mm,r_b_mm,z_b_mm,split

@@ -9,9 +9,9 @@ from click.testing import CliRunner
 from decoders import dst, jef
 from stitchswitch.cli.main import cli
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout import fabricate as fab
-from stitchswitch.layout.design_io import load_design
-from stitchswitch.layout.patch_design import geometry_for
+from stitchswitch.layout.fabrication import fabricate as fab
+from stitchswitch.layout.garment.design_io import load_design
+from stitchswitch.layout.embroidery.patch_design import geometry_for
 
 
 def patch(pid, x, y, d, p, conductive=None, top="#1b1b1b"):
@@ -179,7 +179,7 @@ def test_failure_midway_is_atomic(tmp_path):
 
 def test_write_failure_is_atomic(tmp_path, monkeypatch):
     design = load_design(write_design(tmp_path / "design.json", SMALL[:1]))
-    from stitchswitch import outdir as od
+    from stitchswitch.files import outdir as od
     calls = []
 
     def flaky(path, data):

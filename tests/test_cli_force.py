@@ -5,7 +5,7 @@ import pytest
 from click.testing import CliRunner
 
 from stitchswitch.cli.main import cli
-from stitchswitch.reduced.force_model import default_force_fit
+from stitchswitch.reduced.design_space.force_model import default_force_fit
 
 
 def run(*args):

@@ -5,7 +5,7 @@ import pytest
 from click.testing import CliRunner
 
 from stitchswitch.cli.main import cli
-from stitchswitch.layout.design_io import load_design
+from stitchswitch.layout.garment.design_io import load_design
 
 DXF = pathlib.Path(__file__).resolve().parents[2] / "shared/data/external/dxf"
 IN = 25.4

@@ -41,8 +41,8 @@ def test_bad_options_exit_2():
 def test_inverse_on_a_given_map_uses_its_material(tmp_path):
     import numpy as np
 
-    from stitchswitch.reduced import map_io, precompute
-    from stitchswitch.reduced.params import DEFAULT_MATERIAL
+    from stitchswitch.reduced.design_space import storage as map_io, precompute
+    from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
     other = DEFAULT_MATERIAL.replace(w_b_emb=12.0)
     small = precompute.build(other, np.arange(40.0, 46.0), np.round(np.arange(0.7, 0.86, 0.05), 2),

@@ -3,7 +3,7 @@ import pytest
 from click.testing import CliRunner
 
 from stitchswitch.cli.main import cli
-from stitchswitch.layout.design_io import load_design
+from stitchswitch.layout.garment.design_io import load_design
 
 
 def run(*args):

@@ -4,7 +4,7 @@ import numpy as np
 from click.testing import CliRunner
 
 from stitchswitch.cli.main import cli
-from stitchswitch.reduced.map_io import load_map
+from stitchswitch.reduced.design_space.storage import load_map
 
 
 def test_precompute_small_grid_writes_map_and_plot(tmp_path):

@@ -7,8 +7,8 @@ import pytest
 from click.testing import CliRunner
 
 from stitchswitch.cli.main import cli
-from stitchswitch.reduced.material_io import save_material
-from stitchswitch.reduced.params import DEFAULT_MATERIAL
+from stitchswitch.reduced.model.material_io import save_material
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
 KEYS = ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm", "energy", "residual", "converged",
         "iterations", "solve_ms")

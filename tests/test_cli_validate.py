@@ -6,9 +6,9 @@ import pytest
 from click.testing import CliRunner
 
 from stitchswitch.cli.main import cli
-from stitchswitch.reduced.material_io import default_material_path, material_hash
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Patch
-from stitchswitch.reduced.solve import solve
+from stitchswitch.reduced.model.material_io import default_material_path, material_hash
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.solvers.solve import solve
 from stitchswitch.validation.report import REPORT_FILES
 
 DESIGNS = {"train": [(30.0, 0.8), (40.0, 0.9), (50.0, 0.7), (60.0, 1.0), (35.0, 0.6), (45.0, 0.85)],

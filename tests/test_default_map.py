@@ -3,11 +3,11 @@ import numpy as np
 import pytest
 
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
-from stitchswitch.reduced import map_check
-from stitchswitch.reduced.design_map import FLAG_SMOOTH, FLAG_UNEXPLAINED, FLAG_ONSET
-from stitchswitch.reduced.map_cache import default_map, map_for
-from stitchswitch.reduced.material_io import material_hash
-from stitchswitch.reduced.precompute import DEFAULT_DIAMETERS_MM, DEFAULT_FILLS
+from stitchswitch.reduced.design_space import smoothness as map_check
+from stitchswitch.reduced.design_space.design_map import FLAG_SMOOTH, FLAG_UNEXPLAINED, FLAG_ONSET
+from stitchswitch.reduced.design_space.cache import default_map, map_for
+from stitchswitch.reduced.model.material_io import material_hash
+from stitchswitch.reduced.design_space.precompute import DEFAULT_DIAMETERS_MM, DEFAULT_FILLS
 
 
 @pytest.fixture(scope="module")
@@ -74,7 +74,7 @@ def test_query_accuracy_against_direct_solves(dmap):
 
 
 def test_coarse_map_for_another_material_is_built_once_and_cached(tmp_path, monkeypatch):
-    from stitchswitch.reduced.map_cache import COARSE_DIAMETERS_MM, COARSE_FILLS
+    from stitchswitch.reduced.design_space.cache import COARSE_DIAMETERS_MM, COARSE_FILLS
 
     monkeypatch.setenv("STITCHSWITCH_CACHE", str(tmp_path))
     other = DEFAULT_MATERIAL.replace(w_b_emb=12.0)

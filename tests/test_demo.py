@@ -1,4 +1,4 @@
-"""The built-in demos end to end (issue 11): every step's output exists and is what it says,
+"""The built-in demos end to end: every step's output exists and is what it says,
 the JEF decodes, and a rerun gives identical files."""
 import json
 

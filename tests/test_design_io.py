@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.design import (CompositeSpec, Design, MachineSpec, MaterialRef,
+from stitchswitch.layout.garment.design import (CompositeSpec, Design, MachineSpec, MaterialRef,
                                         PatchSpec, PieceSpec, Threads)
-from stitchswitch.layout.design_io import (design_from_dict, design_to_dict, dumps_design,
+from stitchswitch.layout.garment.design_io import (design_from_dict, design_to_dict, dumps_design,
                                            load_design, save_design)
-from stitchswitch.reduced.material_io import save_material
-from stitchswitch.reduced.params import DEFAULT_MATERIAL
+from stitchswitch.reduced.model.material_io import save_material
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SCHEMA = ROOT / "src/stitchswitch/data/design.schema.json"

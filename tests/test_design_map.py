@@ -3,8 +3,8 @@ import numpy as np
 import pytest
 
 from stitchswitch import DEFAULT_MATERIAL, InvalidInputError, Patch, solve
-from stitchswitch.reduced import map_check, map_io, precompute
-from stitchswitch.reduced.design_map import FLAG_ONSET, FLAG_SMOOTH, FLAG_UNRESOLVED, KEYPOINTS
+from stitchswitch.reduced.design_space import smoothness as map_check, storage as map_io, precompute
+from stitchswitch.reduced.design_space.design_map import FLAG_ONSET, FLAG_SMOOTH, FLAG_UNRESOLVED, KEYPOINTS
 
 
 @pytest.fixture(scope="module")

@@ -11,15 +11,15 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.params import Patch
-from stitchswitch.validation.discovery import DiscoveryConfig, discover
-from stitchswitch.validation.discovery_cv import f_test, fold_labels, sign_flip_test
-from stitchswitch.validation.discovery_eval import Evaluator
-from stitchswitch.validation.discovery_fit import fit, jacobian, linearized_start, scan_values
-from stitchswitch.validation.discovery_residuals import systematic_test
-from stitchswitch.validation.discovery_signature import explain, signature
-from stitchswitch.validation.discovery_space import BASE_FREE, ModelSpec
-from stitchswitch.validation.discovery_synthetic import (N_VAL, SIGMA_MM, START_MATERIAL,
+from stitchswitch.reduced.model.params import Patch
+from stitchswitch.validation.discovery.workflow import DiscoveryConfig, discover
+from stitchswitch.validation.discovery.cv import f_test, fold_labels, sign_flip_test
+from stitchswitch.validation.discovery.evaluate import Evaluator
+from stitchswitch.validation.discovery.fit import fit, jacobian, linearized_start, scan_values
+from stitchswitch.validation.discovery.residuals import systematic_test
+from stitchswitch.validation.discovery.signature import explain, signature
+from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
+from stitchswitch.validation.discovery.synthetic import (N_VAL, SIGMA_MM, START_MATERIAL,
                                                          TRAIN_D_MM, TRAIN_FILL, TRUE_MATERIAL,
                                                          dataset_text, draw_values)
 from stitchswitch.validation.measured import parse_measurements
@@ -154,8 +154,8 @@ def test_signature_is_zero_to_probe_secant():
     ev = Evaluator()
     x = spec.encode(START)
     s = signature(spec, ev, [(50.0, 0.8)], x[:5])
-    from stitchswitch.validation.effects import solve_effects
-    from stitchswitch.reduced.solve import solve
+    from stitchswitch.validation.discovery.effects import solve_effects
+    from stitchswitch.reduced.solvers.solve import solve
     on = solve_effects(Patch(50.0, 0.8), START, {"prestretch_loss": (0.05,)}).keypoints
     off = solve(Patch(50.0, 0.8), START).keypoints
     assert s[0, 1] == pytest.approx((on.r_a_mm - off.r_a_mm) / 0.05, rel=1e-9)
@@ -179,7 +179,7 @@ def test_dataset_is_synthetic_reproducible_and_hides_the_effect():
 
 
 def test_noise_and_design_match_the_reference_generator():
-    """The issue asks for noise at the magnitude of the synthetic reference dataset."""
+    """Noise at the magnitude of the synthetic reference dataset."""
     spec = importlib.util.spec_from_file_location("gen", ROOT / "scripts" / "make_measured_dataset.py")
     gen = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(gen)
@@ -201,7 +201,7 @@ def test_generator_script_is_byte_reproducible(tmp_path):
 
 
 def test_drawn_strengths_lie_in_the_hidden_range():
-    from stitchswitch.validation.effects import LIBRARY
+    from stitchswitch.validation.discovery.effects import LIBRARY
 
     rng = np.random.default_rng(0)
     for name, effect in LIBRARY.items():

@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.discretization import Grid, make_grid, min_inside, n_inside
-from stitchswitch.reduced.params import DEFAULT_MATERIAL as SHIPPED, Material, Patch
+from stitchswitch.reduced.model.discretization import Grid, make_grid, min_inside, n_inside
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL as SHIPPED, Material, Patch
 
 # The printed rule: the domain may be any number of patch radii (no small-patch refinement).
 DEFAULT_MATERIAL = SHIPPED.replace(domain_max_rb=1000.0)

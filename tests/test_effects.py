@@ -4,14 +4,14 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced import assembly
-from stitchswitch.reduced.discretization import make_grid
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Patch
-from stitchswitch.reduced.solve import solve
-from stitchswitch.validation.effects import (LIBRARY, Effect, EffectParameter, configure,
+from stitchswitch.reduced.model import assembly
+from stitchswitch.reduced.model.discretization import make_grid
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.solvers.solve import solve
+from stitchswitch.validation.discovery.effects import (LIBRARY, Effect, EffectParameter, configure,
                                              get_effect, register_effect, solve_effects)
-from stitchswitch.validation.effects import gravity_sag, hardening, hoop_bending, tension_asymmetry
-from stitchswitch.validation.effects.registry import LIBRARY as REGISTRY
+from stitchswitch.validation.discovery.effects import gravity_sag, hardening, hoop_bending, tension_asymmetry
+from stitchswitch.validation.discovery.effects.registry import LIBRARY as REGISTRY
 from tests.conftest import fd_gradient as _fd_gradient, pack as _pack, random_state
 
 FAST = DEFAULT_MATERIAL.replace(n_nodes=120, dr_max_mm=1.0)
@@ -88,7 +88,7 @@ def test_hoop_bending_is_the_shell_references_hoop_term():
 
 def test_tension_asymmetry_completes_the_square():
     """bending + tension_asymmetry = w rho^2/D (T - T0)^2 per inside hinge."""
-    from stitchswitch.reduced.terms import bending
+    from stitchswitch.reduced.model.terms import bending
 
     grid = make_grid(Patch(20.0, 0.9), DEFAULT_MATERIAL.replace(n_nodes=40))
     r, z = random_state(grid, 5)

@@ -2,10 +2,10 @@
 import numpy as np
 import pytest
 
-from stitchswitch.reduced import assembly
-from stitchswitch.reduced.discretization import make_grid
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Patch
-from stitchswitch.reduced.terms import ALL_TERMS, hardening
+from stitchswitch.reduced.model import assembly
+from stitchswitch.reduced.model.discretization import make_grid
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.model.terms import ALL_TERMS, hardening
 from tests.conftest import fd_gradient as _fd_gradient, pack as _pack, random_state
 
 TERMS = {t.__name__.rsplit(".", 1)[1]: t for t in ALL_TERMS}

@@ -5,7 +5,7 @@ import pytest
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
 from stitchswitch.fem_reference.density import density
 from stitchswitch.fem_reference.shell import ShellModel
-from stitchswitch.reduced.keypoints import keypoints_from_profile
+from stitchswitch.reduced.model.keypoints import keypoints_from_profile
 
 
 @pytest.mark.parametrize("hoop, nu", [(0.0, 0.0), (1.0, 0.3)])
@@ -150,7 +150,7 @@ def test_eigen_shift_newton_finds_the_same_equilibrium_from_the_reduced_start():
 def test_continuation_reaches_the_equilibrium_of_the_reduced_start(d, p, monkeypatch):
     """From the flat sheet, without the reduced model (it is disabled during the continuation),
     to the same local minimum as Newton from the reduced equilibrium: keypoints within 0.5 %."""
-    import stitchswitch.reduced.solve as reduced_solve
+    import stitchswitch.reduced.solvers.solve as reduced_solve
 
     patch = Patch(d, p)
     red = solve(patch)

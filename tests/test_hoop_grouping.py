@@ -7,12 +7,12 @@ import pytest
 import shapely
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout import hoop_free, hoop_garment, hoop_greedy
-from stitchswitch.layout.hoop_footprints import Footprint, StretchedPiece
-from stitchswitch.layout.hoop_grouping import group
-from stitchswitch.layout.hoop_mip import CoverSolution
-from stitchswitch.layout.hoop_spec import Hoop
-from stitchswitch.layout.hoops import JANOME_550E_HOOPS
+from stitchswitch.layout.fabrication.grouping import free as hoop_free, garment as hoop_garment, greedy as hoop_greedy
+from stitchswitch.layout.fabrication.grouping.footprints import Footprint, StretchedPiece
+from stitchswitch.layout.fabrication.grouping.group import group
+from stitchswitch.layout.fabrication.grouping.mip import CoverSolution
+from stitchswitch.layout.embroidery.hoop_spec import Hoop
+from stitchswitch.layout.embroidery.hoops import JANOME_550E_HOOPS
 
 SQ = Hoop("SQ", 140.0, 140.0, 2, margin_mm=5.0, frame_width_mm=20.0)
 RE = Hoop("RE", 140.0, 200.0, 2, margin_mm=5.0, frame_width_mm=20.0)
@@ -147,7 +147,7 @@ def test_garment_mip_never_worse_than_greedy(seed):
 
 
 def test_greedy_baselines_are_covers():
-    from stitchswitch.layout import hoop_candidates
+    from stitchswitch.layout.fabrication.grouping import candidates as hoop_candidates
     feet = random_feet(15, 3)
     cands = hoop_candidates.generate(feet, (rect_piece(900, 900),), JANOME_550E_HOOPS)
     for chosen in (hoop_greedy.greedy_cover(cands),

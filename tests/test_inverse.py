@@ -3,8 +3,8 @@ import numpy as np
 import pytest
 
 from stitchswitch import InvalidInputError, Patch, solve
-from stitchswitch.reduced.inverse import HEIGHT_TOL_MM, InverseTarget, inverse_design
-from stitchswitch.reduced.inverse_mip import select
+from stitchswitch.reduced.design_space.inverse import HEIGHT_TOL_MM, InverseTarget, inverse_design
+from stitchswitch.reduced.design_space.inverse_mip import select
 
 
 def _check_confirmed(c):

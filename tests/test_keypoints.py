@@ -11,7 +11,7 @@ from scipy.optimize import brentq
 from scipy.special import erf
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.keypoints import (
+from stitchswitch.reduced.model.keypoints import (
     FLAT_H_MM, FOOT_FRACTION, Keypoints, keypoints, keypoints_from_profile)
 
 N, DR, N_IN = 300, 0.5, 40

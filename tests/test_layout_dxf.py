@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.dxf_import import import_dxf
+from stitchswitch.layout.garment.dxf.reader import import_dxf
 
 DXF = pathlib.Path(__file__).resolve().parents[2] / "shared/data/external/dxf"
 IN = 25.4

@@ -7,10 +7,10 @@ import pytest
 
 from decoders import dst, jef
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout import export, preview
-from stitchswitch.layout import stitches as st
-from stitchswitch.layout.hoops import JANOME_550E_HOOPS, choose_hoop
-from stitchswitch.layout.patch_geometry import ByRing, make_patch
+from stitchswitch.layout.embroidery import export, stitch_preview as preview
+from stitchswitch.layout.embroidery import stitches as st
+from stitchswitch.layout.embroidery.hoops import JANOME_550E_HOOPS, choose_hoop
+from stitchswitch.layout.embroidery.patch_geometry import ByRing, make_patch
 
 STAR = pathlib.Path(__file__).resolve().parents[2] / "shared/data/external/embroidery"
 

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout import tessellation as tess
-from stitchswitch.layout.patch_geometry import (ByAnnulus, ByIndex, ByPolygon, ByRing,
+from stitchswitch.layout.embroidery import tessellation as tess
+from stitchswitch.layout.embroidery.patch_geometry import (ByAnnulus, ByIndex, ByPolygon, ByRing,
                                                 make_patch)
 
 

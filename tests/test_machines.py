@@ -1,13 +1,13 @@
 """The machine and hoop catalogue: the shipped data, the user's own file, its validation, and
-the backward-compatible ``layout.hoops`` API."""
+the backward-compatible ``layout.embroidery.hoops`` API."""
 import copy
 import json
 
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout import export, hoops, machines
-from stitchswitch.layout.hoop_spec import Hoop
+from stitchswitch.layout.embroidery import export, hoops, machines
+from stitchswitch.layout.embroidery.hoop_spec import Hoop
 
 
 def builtin_obj():

@@ -6,7 +6,7 @@ import math
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, DIAMETER_RANGE_MM, Material, Patch
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, DIAMETER_RANGE_MM, Material, Patch
 
 STIFFNESSES = ("w_b_emb", "w_b_fab", "k_r_emb", "k_r_fab", "k_theta_emb", "k_theta_fab")
 FLOAT_FIELDS = STIFFNESSES + ("w_log", "gamma_mm", "eta", "dr_max_mm", "compression_ratio")

@@ -1,4 +1,4 @@
-"""Composite and non-circular patches (layout.patch_design): per-region fill, plain-case identity,
+"""Composite and non-circular patches (layout.embroidery.patch_design): per-region fill, plain-case identity,
 convex pieces, conductive selection and stitchability."""
 from types import SimpleNamespace as NS
 
@@ -7,10 +7,10 @@ import pytest
 import shapely
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout import tessellation as tess
-from stitchswitch.layout.patch_design import geometry_for
-from stitchswitch.layout.patch_geometry import make_patch
-from stitchswitch.layout.stitches import plan_stitches
+from stitchswitch.layout.embroidery import tessellation as tess
+from stitchswitch.layout.embroidery.patch_design import geometry_for
+from stitchswitch.layout.embroidery.patch_geometry import make_patch
+from stitchswitch.layout.embroidery.stitches import plan_stitches
 
 
 def spec(d=60.0, p=0.5, core=None, outline=None, conductive=None):

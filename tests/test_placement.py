@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.constraints import check_design
-from stitchswitch.layout.design import Design, PatchSpec, PieceSpec
-from stitchswitch.layout.placement import (grid_centres, new_ids, piece_centroid, place_along,
+from stitchswitch.layout.check.constraints import check_design
+from stitchswitch.layout.garment.design import Design, PatchSpec, PieceSpec
+from stitchswitch.layout.garment.placement import (grid_centres, new_ids, piece_centroid, place_along,
                                            place_at, place_grid, polyline_centres)
-from stitchswitch.layout.patterns import button_array, button_pitch_mm, pocket_patch
+from stitchswitch.layout.garment.patterns import button_array, button_pitch_mm, pocket_patch
 
 DXF = pathlib.Path(__file__).resolve().parents[2] / "shared/data/external/dxf"
 ETA = 1.7
@@ -121,8 +121,8 @@ def test_button_array_pitch_leaves_the_requested_spacing():
 @pytest.mark.skipif(not DXF.is_dir(), reason="DXF fixtures not found")
 def test_pocket_patch_on_the_imported_tank_front():
     """The tennis pocket (paper 6.1) as one large patch on a real pattern piece."""
-    from stitchswitch.layout.dxf_import import import_dxf
-    from stitchswitch.layout.piece_select import select_pieces
+    from stitchswitch.layout.garment.dxf.reader import import_dxf
+    from stitchswitch.layout.garment.piece_select import select_pieces
 
     pieces = select_pieces(import_dxf(DXF / "WM_LOOSE_SHAPE_TANK_AAMA.DXF"), "36",
                            ["RELAXED TANK FR V2"])

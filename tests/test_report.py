@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced import solve as solve_module
-from stitchswitch.reduced.material_io import material_hash
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.solvers import solve as solve_module
+from stitchswitch.reduced.model.material_io import material_hash
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 from stitchswitch.validation import report as report_module
 from stitchswitch.validation.measured import QUANTITIES, load_measurements
 from stitchswitch.validation.metrics import PAPER_TABLE1
@@ -144,7 +144,7 @@ def test_non_converged_solves_are_recorded(dataset, tmp_path, monkeypatch):
 
 
 def test_failure_midway_leaves_nothing(dataset, tmp_path, monkeypatch):
-    from stitchswitch.reduced import map_plot
+    from stitchswitch.reduced.design_space import heatmap as map_plot
 
     def boom(*args, **kwargs):
         raise OSError(28, "No space left on device")

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from stitchswitch import InvalidInputError, Patch, solve
-from stitchswitch.revolution import surface_of_revolution, write_mesh
+from stitchswitch.files.revolution import surface_of_revolution, write_mesh
 
 
 @pytest.mark.parametrize("ext", [".vtu", ".ply", ".obj"])

@@ -3,9 +3,10 @@ import numpy as np
 import pytest
 
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
-from stitchswitch.reduced import assembly, continuation, newton
-from stitchswitch.reduced.constraints import admissible, kkt_residual
-from stitchswitch.reduced.discretization import make_grid
+from stitchswitch.reduced.model import assembly
+from stitchswitch.reduced.solvers import continuation, newton
+from stitchswitch.reduced.solvers.constraints import admissible, kkt_residual
+from stitchswitch.reduced.model.discretization import make_grid
 
 DESIGNS = [(15.0, 0.6), (25.0, 1.0), (40.0, 0.8), (70.0, 1.0), (100.0, 0.6)]
 
@@ -174,7 +175,7 @@ def test_default_material_shows_the_papers_qualitative_findings():
 
 def test_custom_terms_need_newton():
     from stitchswitch import InvalidInputError
-    from stitchswitch.reduced.terms import ALL_TERMS
+    from stitchswitch.reduced.model.terms import ALL_TERMS
 
     with pytest.raises(InvalidInputError, match="terms"):
         solve(Patch(40.0, 0.8), solver="adam", terms=ALL_TERMS)
@@ -185,7 +186,7 @@ def test_custom_terms_need_newton():
 def test_solve_runs_on_one_blas_thread_and_restores_the_callers_setting(monkeypatch):
     from threadpoolctl import threadpool_info
 
-    from stitchswitch.reduced import banded
+    from stitchswitch.reduced.solvers import banded
 
     seen = []
     real = banded.cholesky

@@ -6,7 +6,7 @@ as in the paper). The reduced model works internally in units of the node spacin
 (see ``docs/model.md``); everything it returns is converted back to mm.
 """
 from stitchswitch.errors import StitchSwitchError, InvalidInputError
-from stitchswitch.reduced.params import Material, Patch, DEFAULT_MATERIAL
+from stitchswitch.reduced.model.params import Material, Patch, DEFAULT_MATERIAL
 
 __version__ = "0.1.0"
 __all__ = [
@@ -16,8 +16,8 @@ __all__ = [
 
 # The solver pulls in the compiled (numba) energy kernels, about 0.6 s of import time; it is
 # imported on first use, so that commands that never solve (check, fabricate, ...) start fast.
-_LAZY = {"solve": "stitchswitch.reduced.solve", "Solution": "stitchswitch.reduced.solve",
-         "keypoints": "stitchswitch.reduced.keypoints", "Keypoints": "stitchswitch.reduced.keypoints"}
+_LAZY = {"solve": "stitchswitch.reduced.solvers.solve", "Solution": "stitchswitch.reduced.solvers.solve",
+         "keypoints": "stitchswitch.reduced.model.keypoints", "Keypoints": "stitchswitch.reduced.model.keypoints"}
 
 
 def __getattr__(name):

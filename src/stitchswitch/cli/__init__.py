@@ -1,6 +1,7 @@
-"""The ``stitchswitch`` command line: a thin layer over the library.
+"""The ``stitchswitch`` command line: a thin layer over the library, the top of the package.
 
-``main`` holds the click group, ``options`` the options and error handling shared by the
-subcommands, and each subcommand has its own module (``simulate``). Library exceptions
+``main`` holds the click group and loads each subcommand lazily; ``options`` holds the options and
+the error handling shared by the subcommands. The subcommands live in one folder per layer they
+drive: ``model/``, ``reference/``, ``validation/`` and ``design/``. Library exceptions
 (``InvalidInputError``) become one-line ``Error: ...`` messages with exit code 2 at this edge only.
 """

@@ -12,7 +12,7 @@ import pathlib
 import click
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.params import DIAMETER_RANGE_MM, SOLVERS
+from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM, SOLVERS
 
 
 class InputError(click.ClickException):

@@ -4,7 +4,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
-from stitchswitch.layout.design import Design
+from stitchswitch.layout.garment.design import Design
 
 
 @dataclass(frozen=True)

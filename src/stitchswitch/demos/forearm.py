@@ -11,9 +11,9 @@ from __future__ import annotations
 from stitchswitch.demos.demo import Demo, DemoDesign
 from stitchswitch.demos.garments import forearm_sleeve_panel
 from stitchswitch.demos.inverse_step import choose
-from stitchswitch.layout.design import Design, MachineSpec, MaterialRef, Threads
-from stitchswitch.layout.placement import add_patches
-from stitchswitch.reduced.inverse import InverseTarget
+from stitchswitch.layout.garment.design import Design, MachineSpec, MaterialRef, Threads
+from stitchswitch.layout.garment.placement import add_patches
+from stitchswitch.reduced.design_space.inverse import InverseTarget
 
 MAX_DIAMETER_MM = 60.0
 #: (label, target height mm, force band N, thread colour): distinct thresholds by tier

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from stitchswitch.layout.design import PieceSpec
+from stitchswitch.layout.garment.design import PieceSpec
 
 SOURCE = "built-in (stitchswitch.demos.garments; simplified, not from pattern CAD)"
 

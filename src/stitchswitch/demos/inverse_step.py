@@ -4,7 +4,7 @@ from __future__ import annotations
 from dataclasses import asdict
 
 from stitchswitch.demos.demo import InverseStep
-from stitchswitch.reduced.inverse import InverseTarget, inverse_design
+from stitchswitch.reduced.design_space.inverse import InverseTarget, inverse_design
 
 
 def choose(label: str, target: InverseTarget) -> InverseStep:

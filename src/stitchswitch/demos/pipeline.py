@@ -1,9 +1,9 @@
 """Run a demo end to end into one output directory.
 
 Steps (each printed with its time): 1 inverse design and placement (the demo's ``build``),
-2 constraint check, 3 3D preview, 4 hoop grouping and JEF export (``layout.fabricate``),
+2 constraint check, 3 3D preview, 4 hoop grouping and JEF export (``layout.fabrication.fabricate``),
 5 the one-page HTML summary. The directory is built next to its target and renamed into place
-at the end (``layout.fabrication_outdir.building``): on any error nothing is left behind.
+at the end (``files.outdir.building``): on any error nothing is left behind.
 Files hold no timestamps or timings, so a rerun gives identical files.
 
 Output directory::
@@ -23,8 +23,8 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from stitchswitch.atomic import atomic_write_text
-from stitchswitch.layout.design_io import load_design, save_design
+from stitchswitch.files.atomic import atomic_write_text
+from stitchswitch.layout.garment.design_io import load_design, save_design
 
 STEPS = ("inverse design and placement", "constraint check", "3D preview",
          "hoop grouping and JEF export", "summary")
@@ -40,7 +40,7 @@ class DemoRun:
 
 
 def run_demo(demo, outdir, *, force: bool = False, echo=print, time_limit_s: float = 10.0) -> DemoRun:
-    from stitchswitch.layout.fabrication_outdir import building
+    from stitchswitch.files.outdir import building
 
     t_start = time.perf_counter()
     with building(outdir, force) as tmp:
@@ -94,7 +94,7 @@ def _json(obj) -> str:
 
 
 def _check(design):
-    from stitchswitch.layout.constraints import check_design
+    from stitchswitch.layout.check.constraints import check_design
 
     return check_design(design)
 
@@ -117,7 +117,7 @@ def _preview(design, tmp: Path, view: str) -> None:
 
 
 def _fabricate(design, outdir: Path, time_limit_s: float):
-    from stitchswitch.layout.fabricate import FabricateOptions, fabricate
+    from stitchswitch.layout.fabrication.fabricate import FabricateOptions, fabricate
 
     return fabricate(design, outdir, FabricateOptions(fmt="jef", time_limit_s=time_limit_s))
 

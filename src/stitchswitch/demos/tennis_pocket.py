@@ -10,9 +10,9 @@ from __future__ import annotations
 from stitchswitch.demos.demo import Demo, DemoDesign
 from stitchswitch.demos.garments import skirt_front_panel
 from stitchswitch.demos.inverse_step import choose
-from stitchswitch.layout.design import Design, MachineSpec, MaterialRef
-from stitchswitch.layout.patterns import pocket_patch
-from stitchswitch.reduced.inverse import InverseTarget
+from stitchswitch.layout.garment.design import Design, MachineSpec, MaterialRef
+from stitchswitch.layout.garment.patterns import pocket_patch
+from stitchswitch.reduced.design_space.inverse import InverseTarget
 
 POCKET_HEIGHT_MM = 17.5          # the paper's measured pocket height (section 6.1)
 BALL_DIAMETER_MM = 67.0          # a tennis ball, about 6.7 cm across

@@ -8,7 +8,7 @@ default, ``continuation.py``) or started from the N = 600 equilibrium (``start="
 reference's own discretization error is estimated by solving it again with half the elements.
 Reported per keypoint: the relative difference (reduced - reference) / reference. Where the reduced model misses the reference,
 the cause is measured, not assumed: the N = 300 solve is repeated with one term's
-discretization swapped (``reduced.terms.variants``: the hoop term with node-averaged
+discretization swapped (``reduced.model.terms.variants``: the hoop term with node-averaged
 coefficients at the boundary), and the change of the gap is reported.
 """
 from __future__ import annotations
@@ -17,8 +17,8 @@ import numpy as np
 
 from stitchswitch.fem_reference.continuation import DEFAULT_START, solve_reference
 from stitchswitch.fem_reference.shell import ShellModel
-from stitchswitch.reduced.keypoints import keypoints_from_profile
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Material, Patch
+from stitchswitch.reduced.model.keypoints import keypoints_from_profile
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material, Patch
 
 NODES = (75, 150, 300, 600)
 ELEMENTS_INSIDE = 80
@@ -28,7 +28,7 @@ TARGETS = {"h_mm": 0.05, "r_a_mm": 0.03}      # at N = 300
 
 
 def _reduced(patch: Patch, material: Material, n: int, terms=None):
-    from stitchswitch.reduced.solve import solve
+    from stitchswitch.reduced.solvers.solve import solve
 
     m = material.replace(n_nodes=n, dr_max_mm=material.dr_max_mm * material.n_nodes / n)
     return solve(patch, m, terms=terms)
@@ -60,7 +60,7 @@ def check_design(patch: Patch, material: Material = DEFAULT_MATERIAL, *, hoop_be
             **{k: getattr(rk, k) for k in KEYS},
             **{f"rel_{k}": _rel(getattr(rk, k), ref_kp[k]) for k in KEYS}}
     # attribution: the same at N = 300 with the hoop term's node-averaged quadrature
-    from stitchswitch.reduced.terms.variants import HOOP_NODE_AVERAGE_TERMS
+    from stitchswitch.reduced.model.terms.variants import HOOP_NODE_AVERAGE_TERMS
 
     variant = _reduced(patch, material, 300, HOOP_NODE_AVERAGE_TERMS).keypoints
     row["hoop_node_average_300"] = {f"rel_{k}": _rel(getattr(variant, k), ref_kp[k]) for k in KEYS}

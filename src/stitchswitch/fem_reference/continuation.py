@@ -153,7 +153,7 @@ def prestretch_continuation(model: ShellModel, *, tol: float = 1e-9) -> Continua
 def solve_reference(model: ShellModel, start: str = "reduced", reduced=None, *,
                     max_iter: int = 300) -> ShellSolution:
     """The reference equilibrium of ``model``, started as ``start`` says: ``"reduced"`` runs
-    Newton from the reduced model's equilibrium ``reduced`` (a ``reduced.solve.Solution``;
+    Newton from the reduced model's equilibrium ``reduced`` (a ``reduced.solvers.solve.Solution``;
     solved here if None), ``"continuation"`` runs ``prestretch_continuation`` from the flat sheet
     and never calls the reduced model."""
     if start == "continuation":
@@ -163,7 +163,7 @@ def solve_reference(model: ShellModel, start: str = "reduced", reduced=None, *,
 
         raise InvalidInputError(f"start: {start!r} is not one of {', '.join(STARTS)}")
     if reduced is None:
-        from stitchswitch.reduced.solve import solve
+        from stitchswitch.reduced.solvers.solve import solve
 
         reduced = solve(model.patch, model.material)
     return model.solve(model.start_from_profile(reduced.R_mm, reduced.r_mm, reduced.z_mm),

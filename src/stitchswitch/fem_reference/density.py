@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from stitchswitch.reduced.terms.hardening import h as hardening_h
+from stitchswitch.reduced.model.terms.hardening import h as hardening_h
 
 NQ = 5   # r, r', z', r'', z''
 

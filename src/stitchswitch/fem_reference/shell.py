@@ -35,8 +35,8 @@ from scipy.linalg import (LinAlgError, cho_solve_banded, cholesky_banded, eig_ba
 from scipy.sparse.linalg import splu
 
 from stitchswitch.fem_reference.density import density
-from stitchswitch.reduced.discretization import make_grid
-from stitchswitch.reduced.params import Material, Patch
+from stitchswitch.reduced.model.discretization import make_grid
+from stitchswitch.reduced.model.params import Material, Patch
 
 R_IDX, Z_IDX = (0, 1, 3), (2, 4)     # q = (r, r', z', r'', z''): r's (value, d, d2), z's (d, d2)
 BAND = 7                 # half bandwidth of the Hessian in node order: 2 nodes x (r, r', z, z')

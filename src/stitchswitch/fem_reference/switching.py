@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stitchswitch.fem_reference.shell import ShellModel
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Material, Patch
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material, Patch
 
 
 @dataclass(frozen=True)
@@ -44,7 +44,7 @@ class SwitchingCurve:
 def switching_curve(patch: Patch, material: Material = DEFAULT_MATERIAL, *, steps: int = 40,
                     elements_inside: int = 30) -> SwitchingCurve:
     """F(w) from the pop-up equilibrium (w = h) down to w = 0 in ``steps`` steps."""
-    from stitchswitch.reduced.solve import solve
+    from stitchswitch.reduced.solvers.solve import solve
 
     red = solve(patch, material)
     model = ShellModel(patch, material, elements_inside=elements_inside, growth=1.1)

@@ -1,7 +1,13 @@
-"""Patch geometry (``tessellation``, ``patch_geometry``), stitches (``stitches``, ``ordering``),
-hoops, embroidery export (``export``) and previews (``preview``), see docs/embroidery.md; garment
-pattern import (``dxf_import``, ``dxf_aama``, ``dxf_generic``), see docs/dxf.md. The design file,
-placement and the constraint check come with issue 8. Fabrication mode (issue 9,
-docs/fabrication.md): the machine catalogue (``machines``), hoop grouping (``hoop_grouping``:
-``hoop_garment``, ``hoop_free``), stitching order (``hoop_order``), per-hoop plans and the
-output folder (``fabricate``)."""
+"""From a design to fabric: garment patterns, patch placement, the constraint check, stitches,
+machine files and fabrication mode.
+
+Layers, bottom to top (each imports only those below it):
+
+* ``embroidery/``: one patch's geometry and stitches, the format registry, machines and hoops
+  (docs/embroidery.md).
+* ``garment/``: the design file, placement and pattern import (``garment/dxf/``,
+  docs/design-file.md, docs/dxf.md).
+* ``check/``: the constraint check and its rules.
+* ``fabrication/``: hoop grouping (``fabrication/grouping/``), stitching order, per-hoop files and
+  the fabrication sheet (docs/fabrication.md).
+"""

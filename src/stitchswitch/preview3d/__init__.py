@@ -1,4 +1,4 @@
-"""3D preview of a design (issue 10): patch surfaces on the garment pieces, rendered offscreen.
+"""3D preview of a design: patch surfaces on the garment pieces, rendered offscreen.
 
 * ``spec``: what is previewed: pieces, patches (centre, d, fill, state) and the material; built
   from a design file's ``Design`` by ``spec_from_design`` or directly.

@@ -4,7 +4,7 @@
 clim = (-H, H) with H the largest |apex height|, so flat fabric is grey, popped-up patches red
 and popped-down ones blue.
 
-``violations``: the constraint check of the design (``layout.constraints.check_design``): the
+``violations``: the constraint check of the design (``layout.check.constraints.check_design``): the
 embroidered part of a patch (rest radius <= R_b) is red if an error names the patch, orange if
 only a warning does, green otherwise; its blend into the fabric stays grey. A piece named by a
 violation that names no patch (a problem of the piece itself) is tinted like its worst one,
@@ -51,10 +51,10 @@ def status_from_violations(violations) -> tuple[dict, dict]:
 def design_status(design) -> tuple[dict, dict, list]:
     """Run the design's constraint check; (patch status, piece status, violations)."""
     try:
-        from stitchswitch.layout.constraints import check_design
+        from stitchswitch.layout.check.constraints import check_design
     except ImportError:
         raise InvalidInputError("color 'violations': the constraint check "
-                                "(stitchswitch.layout.constraints) is not available") from None
+                                "(stitchswitch.layout.check.constraints) is not available") from None
     violations = list(check_design(design))
     patches, pieces = status_from_violations(violations)
     return patches, pieces, violations

@@ -9,7 +9,7 @@ from __future__ import annotations
 import os
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.revolution import write_mesh
+from stitchswitch.files.revolution import write_mesh
 
 MESH_EXTENSIONS = (".vtu", ".ply", ".obj")
 

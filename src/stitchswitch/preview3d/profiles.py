@@ -1,15 +1,15 @@
 """The equilibrium profile of every patch of a preview.
 
-Profiles come from the design-space map of the material (``reduced.map_cache``), as in the
+Profiles come from the design-space map of the material (``reduced.design_space.cache``), as in the
 paper's live preview: the shipped map for the default material, or a map already in the cache
 for another material. The preview never builds a map (that takes minutes): a design outside the
 map's domain, or any design of a material without a cached map, is solved directly
-(``reduced.solve``, a few ms each). Identical designs are looked up once.
+(``reduced.solvers.solve``, a few ms each). Identical designs are looked up once.
 
 Profiles are the model's: ``R_mm`` the rest radius of every node in the relaxed fabric,
 ``r_mm`` the deformed radius and ``z_mm`` the height (z = 0 at the outermost node), all in mm;
 node ``n_inside`` lies on the embroidery boundary, at R = d / (2 eta). The keypoints are computed
-from the very profile that is drawn (``reduced.keypoints``), so the figure and the numbers agree.
+from the very profile that is drawn (``reduced.model.keypoints``), so the figure and the numbers agree.
 """
 from __future__ import annotations
 
@@ -19,8 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.keypoints import Keypoints, keypoints_from_profile
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Material, Patch
+from stitchswitch.reduced.model.keypoints import Keypoints, keypoints_from_profile
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material, Patch
 
 log = logging.getLogger(__name__)
 
@@ -46,8 +46,8 @@ class PatchProfile:
 
 def available_map(material: Material):
     """The material's design map if it ships or is cached, else None (never builds one)."""
-    from stitchswitch.reduced import map_cache, map_io
-    from stitchswitch.reduced.material_io import material_hash
+    from stitchswitch.reduced.design_space import cache as map_cache, storage as map_io
+    from stitchswitch.reduced.model.material_io import material_hash
 
     if material == DEFAULT_MATERIAL:
         return map_cache.default_map()
@@ -61,7 +61,7 @@ def _in_domain(dmap, d: float, p: float) -> bool:
 
 
 def _from_map(dmap, designs: list[tuple[float, float]]) -> list[PatchProfile]:
-    from stitchswitch.reduced.discretization import n_inside_array
+    from stitchswitch.reduced.model.discretization import n_inside_array
 
     d = np.array([x[0] for x in designs])
     p = np.array([x[1] for x in designs])
@@ -76,7 +76,7 @@ def _from_map(dmap, designs: list[tuple[float, float]]) -> list[PatchProfile]:
 
 
 def _from_solve(d: float, p: float, material: Material) -> PatchProfile:
-    from stitchswitch.reduced.solve import solve
+    from stitchswitch.reduced.solvers.solve import solve
 
     sol = solve(Patch(d, p), material)
     if not sol.converged:

@@ -15,7 +15,7 @@ import os
 
 import numpy as np
 
-from stitchswitch.atomic import atomic_write_bytes
+from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.preview3d.profiles import PatchProfile
 

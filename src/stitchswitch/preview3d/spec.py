@@ -2,7 +2,7 @@
 
 All lengths are garment coordinates in mm on the relaxed fabric, except ``diameter_mm``, which
 is the model's diameter on the pre-stretched fabric (the design-file contract). ``spec_from_design``
-reads a ``layout.design.Design`` (or anything with the same attributes).
+reads a ``layout.garment.design.Design`` (or anything with the same attributes).
 """
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.params import DEFAULT_MATERIAL, Material
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material
 
 STATES = ("up", "down")
 
@@ -67,7 +67,7 @@ class PreviewSpec:
 
 
 def spec_from_design(design) -> PreviewSpec:
-    """The preview spec of a ``layout.design.Design``."""
+    """The preview spec of a ``layout.garment.design.Design``."""
     pieces = tuple(PreviewPiece(p.name, np.asarray(p.outline_mm, dtype=float))
                    for p in design.pieces)
     patches = tuple(

@@ -35,7 +35,7 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.preview3d.profiles import PatchProfile
-from stitchswitch.revolution import surface_of_revolution
+from stitchswitch.files.revolution import surface_of_revolution
 
 BLEND_START = 1.25
 RIM = 2.0

@@ -1,8 +1,12 @@
-"""The reduced 1D energy model of the paper (section 4) and its solvers.
+"""The reduced 1D energy model of the paper (section 4), its solvers and the design space.
 
-Modules: ``params`` (Material, Patch), ``discretization`` (the adaptive grid), ``terms/``
-(one energy term per module, each with gradient and Hessian), ``assembly`` (sums the terms
-into a gradient and a banded Hessian), ``newton`` (the certified projected Newton solver),
-``adam`` (the paper's projected Adam baseline), ``solve`` (the public entry point) and
-``keypoints`` (h, r_a, z_a, r_b, z_b).
+Layers, bottom to top (each imports only those below it):
+
+* ``model/``: parameters, discretization, the energy terms, assembly, keypoints, material files.
+* ``solvers/``: ``solve(patch, material) -> Solution``, certified projected Newton, Adam.
+* ``calibration/`` and ``design_space/``: fitting the material to data; the precomputed map,
+  inverse design and the force model.
+
+The public entry points are re-exported at the top: ``stitchswitch.solve``, ``Patch``,
+``Material``, ``DEFAULT_MATERIAL``.
 """

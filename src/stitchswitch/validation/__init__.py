@@ -1,5 +1,9 @@
-"""Measured data (``measured``), validation metrics (``metrics``) and reports (``report``), and
-discrepancy discovery (issue 6): the library of candidate effects (``effects``) and the
-workflow (``discovery`` with ``discovery_space``, ``discovery_eval``, ``discovery_fit``,
-``discovery_cv``, ``discovery_residuals``, ``discovery_signature``, ``discovery_figures``,
-``discovery_report``, ``discovery_synthetic``); see docs/discovery.md."""
+"""Measured data and the model's agreement with it.
+
+* ``measured``: the samples CSV and its validating loader (``MeasuredData``).
+* ``metrics``: Table-1 errors per quantity and split.
+* ``report``: ``stitchswitch validate``'s report (Markdown, HTML, JSON, plots).
+* ``discovery/``: discrepancy discovery and its library of candidate effects.
+
+Imports ``reduced``; nothing below imports it.
+"""

@@ -42,9 +42,9 @@ from pathlib import Path
 import numpy as np
 
 from stitchswitch import __version__
-from stitchswitch.outdir import building, check_outdir, previous_output
-from stitchswitch.reduced.material_io import material_hash
-from stitchswitch.reduced.params import Material, Patch
+from stitchswitch.files.outdir import building, check_outdir, previous_output
+from stitchswitch.reduced.model.material_io import material_hash
+from stitchswitch.reduced.model.params import Material, Patch
 from stitchswitch.validation.measured import QUANTITIES, SPLITS, MeasuredData
 from stitchswitch.validation.metrics import PAPER_TABLE1, table1
 
@@ -82,7 +82,7 @@ class Predictions:
 
 def predict(data: MeasuredData, material: Material) -> Predictions:
     """Solve each row's design (d, p) with ``solve``; identical designs are solved once."""
-    from stitchswitch.reduced.solve import solve
+    from stitchswitch.reduced.solvers.solve import solve
 
     cache = {}
     for r in data.rows:
@@ -155,8 +155,8 @@ def _png(fig) -> bytes:
 
 
 def _figures(data: MeasuredData, pred: Predictions, material: Material, tmp: Path) -> None:
-    from stitchswitch.reduced.map_cache import map_for
-    from stitchswitch.reduced.map_plot import plot_height_map
+    from stitchswitch.reduced.design_space.cache import map_for
+    from stitchswitch.reduced.design_space.heatmap import plot_height_map
 
     plt = _pyplot()
     measured = data.keypoints()

@@ -1,0 +1,72 @@
+"""``stitchswitch check``: the constraint check of a design file (exit 0 clean, 1 violations)."""
+from __future__ import annotations
+
+import json
+import math
+
+import click
+
+from stitchswitch.cli import options
+from stitchswitch.layout.check.constraints import CheckLimits, check_design
+from stitchswitch.layout.garment.design_io import load_design
+
+_DEFAULT = CheckLimits()
+
+
+def _limit_opt(name: str, field: str, help_text: str):
+    return click.option(name, field, type=options.FINITE_FLOAT, default=getattr(_DEFAULT, field),
+                        show_default=True, metavar="MM", help=help_text)
+
+
+def _number(v: float):
+    return v if math.isfinite(v) else None
+
+
+@click.command(cls=options.Command)
+@click.argument("design", type=click.Path(dir_okay=False))
+@options.json_opt
+@_limit_opt("--seam-allowance", "seam_allowance_mm", "Seam allowance along piece outlines.")
+@_limit_opt("--edge-clearance", "edge_clearance_mm",
+            "Extra clearance between the seam allowance and a patch footprint.")
+@_limit_opt("--min-spacing", "min_spacing_mm",
+            "Bare fabric between patches (relaxed, edge to edge).")
+@_limit_opt("--min-gap", "min_gap_mm", "Smallest gap between stitched triangles (hoop mm).")
+@_limit_opt("--min-side", "min_side_mm", "Smallest stitched triangle side (hoop mm).")
+@click.option("--hoop-margin", "hoop_margin_mm", type=options.FINITE_FLOAT, default=None,
+              metavar="MM", help="Margin inside the hoop field (default: the hoop's own, "
+                                 "from the machine catalogue).")
+@_limit_opt("--resolution", "resolution_mm", "Triangle side of the tessellation.")
+def check(design, as_json, **limits):
+    """Check DESIGN: patches inside their pieces with an edge margin, spacing between patches,
+    triangle sides and gaps the machine can form, and hoop fit. Exit code 0 when clean, 1 when
+    there are violations, 2 for bad input."""
+    lim = CheckLimits(**limits)
+    d = load_design(design)
+    found = check_design(d, lim)
+    errors = sum(v.severity == "error" for v in found)
+    if as_json:
+        out = {"design": design, "patches": len(d.patches), "pieces": len(d.pieces),
+               "limits": lim.as_dict(), "clean": not found,
+               "errors": errors, "warnings": len(found) - errors,
+               "violations": [dict(v.as_dict(), value=_number(v.value), limit=_number(v.limit))
+                              for v in found]}
+        click.echo(json.dumps(out, indent=2, allow_nan=False))
+    else:
+        if found:
+            click.echo(_table(found))
+        click.echo(f"{len(d.patches)} patch(es) on {len(d.pieces)} piece(s): "
+                   + ("no violation" if not found else
+                      f"{errors} error(s), {len(found) - errors} warning(s)"))
+    if found:
+        click.get_current_context().exit(1)
+
+
+def _table(found) -> str:
+    head = ("severity", "rule", "patches", "pieces", "value mm", "limit mm", "message")
+    rows = [(v.severity, v.rule, ",".join(v.patches), ",".join(v.pieces),
+             "-" if not math.isfinite(v.value) else f"{v.value:.2f}", f"{v.limit:g}", v.message)
+            for v in found]
+    widths = [max(len(r[i]) for r in (head, *rows)) for i in range(len(head) - 1)]
+    lines = ["  ".join(c.ljust(w) for c, w in zip(r[:-1], widths)) + "  " + r[-1]
+             for r in (head, *rows)]
+    return "\n".join(lines)

@@ -1,0 +1,72 @@
+"""``stitchswitch import``: start a design file from a DXF garment pattern or a rectangle."""
+from __future__ import annotations
+
+import os
+
+import click
+import numpy as np
+
+from stitchswitch.cli import options
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.garment.design import VERSION, Design
+from stitchswitch.layout.garment.design_io import save_design
+from stitchswitch.layout.garment.dxf.reader import UNITS, import_dxf
+from stitchswitch.layout.garment.piece_select import rectangle_piece, select_pieces
+
+
+def _rectangle(text: str) -> tuple[float, float]:
+    parts = text.lower().replace(" ", "").split("x")
+    try:
+        w, h = (float(v) for v in parts)
+    except ValueError:
+        raise InvalidInputError(f"--rectangle {text!r}: expected WIDTHxHEIGHT in mm, "
+                                "e.g. 300x200") from None
+    return w, h
+
+
+@click.command("import", cls=options.Command)
+@click.argument("pattern", required=False, type=click.Path(dir_okay=False))
+@click.option("--rectangle", default=None, metavar="WxH",
+              help="Instead of a pattern: one rectangular piece, WIDTHxHEIGHT in mm.")
+@click.option("--name", default="rectangle", show_default=True,
+              help="Name of the --rectangle piece.")
+@click.option("--size", default=None, help="The pattern size to import (required when the "
+                                           "file has several).")
+@click.option("--pieces", default=None, metavar="NAME,...",
+              help="Only these pieces (default: every piece of the size).")
+@click.option("--units", type=click.Choice(sorted(UNITS)), default=None,
+              help="Units of a DXF file that does not state them.")
+@click.option("--output", "-o", type=click.Path(dir_okay=False), required=True, metavar="FILE",
+              help="The design file to write.")
+def import_cmd(pattern, rectangle, name, size, pieces, units, output):
+    """Write a new design file (no patches yet) holding the pieces of the DXF PATTERN (AAMA/ASTM
+    from Gerber AccuMark or CLO, or plain DXF), or one --rectangle. Outlines are in mm."""
+    if (pattern is None) == (rectangle is None):
+        raise InvalidInputError("give either a PATTERN file or --rectangle WxH (not both)")
+    if rectangle is not None:
+        if size or pieces or units:
+            raise InvalidInputError("--size, --pieces and --units apply to a PATTERN file only")
+        chosen = (rectangle_piece(*_rectangle(rectangle), name=name),)
+        repairs = ()
+    else:
+        if not os.path.isfile(pattern):
+            raise InvalidInputError(f"no such file: {pattern!r}")
+        imported = import_dxf(pattern, units=units)
+        names = [n.strip() for n in pieces.split(",") if n.strip()] if pieces else None
+        chosen = select_pieces(imported, size, names)
+        repairs = imported.repairs
+    design = Design(VERSION, chosen, ())
+    try:
+        save_design(design, output)
+    except OSError as exc:
+        raise click.FileError(str(exc.filename or output), hint=exc.strerror or str(exc)) from None
+    rows = [("pieces", str(len(chosen)))]
+    for p in chosen:
+        w, h = (float(v) for v in np.ptp(p.outline_mm, axis=0))
+        label = f"{p.name} (size {p.size})" if p.size else p.name
+        rows.append(("piece", f"{label}: {w:.1f} x {h:.1f} mm, {len(p.outline_mm)} points"))
+    if repairs:
+        rows.append(("repaired", f"{len(repairs)} problem(s) in the DXF file, e.g. {repairs[0]}"))
+    rows.append(("file", output))
+    width = max(len(k) for k, _ in rows)
+    click.echo("\n".join(f"{k:<{width}}  {v}" for k, v in rows))

@@ -1,0 +1,102 @@
+"""``stitchswitch patch``: tessellate a patch, plan its stitches, write an embroidery file."""
+from __future__ import annotations
+
+import click
+
+from stitchswitch.cli import options
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.embroidery import export, stitch_preview as preview
+from stitchswitch.layout.embroidery.hoops import choose_hoop
+from stitchswitch.layout.garment.design import CompositeSpec, PatchSpec
+from stitchswitch.layout.embroidery.patch_design import geometry_for
+from stitchswitch.layout.embroidery.patch_geometry import make_patch, parse_selection
+from stitchswitch.layout.embroidery.stitches import StitchParams, plan_stitches
+
+
+@click.command(cls=options.Command)
+@click.option("--diameter", "-d", "diameter_mm", type=options.FINITE_FLOAT, required=True,
+              metavar="MM", help="Patch diameter in mm on the pre-stretched (hooped) fabric.")
+@click.option("--fill", "-p", type=options.FINITE_FLOAT, required=True, metavar="P",
+              help="Fill fraction in (0, 1]: stitched area / patch area.")
+@click.option("--resolution", "resolution_mm", type=options.FINITE_FLOAT, default=5.0,
+              show_default=True, metavar="MM", help="Triangle side of the tessellation.")
+@click.option("--conductive", default=None, metavar="SPEC",
+              help="Triangles in a second (conductive) thread: index:I,J | ring:K,.. | "
+                   "annulus:INNER:OUTER | polygon:X,Y;X,Y;...")
+@click.option("--core", "core", default=None, metavar="D,P",
+              help="Composite patch: a concentric core of diameter D mm stitched at fill P "
+                   "(e.g. a high-fill core in a low-fill surround).")
+@click.option("--outline", default=None, metavar="X,Y;X,Y;...",
+              help="Non-circular outer outline (mm, relative to the centre, inside the circle "
+                   "of --diameter); needs --core.")
+@click.option("--format", "fmt", default=None, metavar="FMT",
+              help="Embroidery format (default: from the -o extension): "
+                   + ", ".join(export.supported_formats()) + ".")
+@click.option("--hoop", default=None, metavar="NAME",
+              help="Hoop (SQ14b, RE20b, SQ20b, RE36b); default the smallest that fits.")
+@click.option("--row-spacing", "row_spacing_mm", type=options.FINITE_FLOAT, default=0.4,
+              show_default=True, metavar="MM", help="Tatami row spacing.")
+@click.option("--underlay", is_flag=True, help="Sew an edge-run underlay under every tatami piece.")
+@click.option("--output", "-o", type=click.Path(dir_okay=False), required=True, metavar="FILE")
+@click.option("--preview", "preview_path", type=click.Path(dir_okay=False), default=None,
+              metavar="FILE", help="Also write a stitch-plan preview (.png or .svg).")
+def patch(diameter_mm, fill, resolution_mm, conductive, core, outline, fmt, hoop, row_spacing_mm,
+          underlay, output, preview_path):
+    """Write the embroidery file of one patch (hoop coordinates, centre at 0,0): circular, or
+    composite (--core) with an optional non-circular outline (--outline)."""
+    fmt_name = export.get_format(fmt).name if fmt else export.format_from_path(output).name
+    hoop_obj = choose_hoop(diameter_mm, diameter_mm, hoop)
+    if preview_path and not preview_path.lower().endswith((".png", ".svg")):
+        raise InvalidInputError(f"preview {preview_path!r} must end in .png or .svg")
+    if core is None and outline is None:
+        selection = parse_selection(conductive) if conductive else None
+        geom = make_patch(diameter_mm, fill, resolution_mm, selection)
+    else:
+        geom = geometry_for(_spec(diameter_mm, fill, conductive, core, outline), resolution_mm)
+    plan = plan_stitches(geom, StitchParams(row_spacing_mm=row_spacing_mm, underlay=underlay))
+    try:
+        export.write(output, plan, fmt_name, hoop_obj)
+        if preview_path:
+            preview.write_preview(preview_path, plan, diameter_mm)
+    except OSError as exc:
+        raise click.FileError(str(exc.filename or output), hint=exc.strerror or str(exc)) from None
+    rows = [
+        ("design", f"d = {diameter_mm:g} mm, fill = {fill:g}, resolution = {resolution_mm:g} mm"),
+        ("triangles", f"{geom.n_triangles} ({int(geom.conductive.sum())} conductive)"),
+        ("fill", f"{geom.achieved_fill:.4f} (scale {geom.scale:.4f})" if core is None else
+                 f"{geom.achieved_fill:.4f} overall (surround {fill:g}, core {core.split(',')[1]})"),
+        ("stitches", str(plan.stitch_count)),
+        ("trims", str(plan.trim_count)),
+        ("colours", str(len(plan.threads))),
+        ("thread", f"{plan.thread_length_mm / 1000:.2f} m"),
+        ("time", f"{plan.sewing_time_min:.1f} min at {plan.stitches_per_minute:g} stitches/min"),
+        ("hoop", str(hoop_obj)),
+        ("file", f"{output} ({fmt_name})"),
+    ] + [("note", n) for n in plan.fabrication_notes()[1:] if len(plan.threads) > 1]
+    width = max(len(k) for k, _ in rows)
+    click.echo("\n".join(f"{k:<{width}}  {v}" for k, v in rows))
+
+
+def _numbers(text: str, what: str) -> list[float]:
+    try:
+        return [float(v) for v in text.split(",")]
+    except ValueError:
+        raise InvalidInputError(f"{what}: {text!r} is not a list of numbers") from None
+
+
+def _spec(diameter_mm, fill, conductive, core, outline) -> PatchSpec:
+    composite = None
+    if core is not None:
+        values = _numbers(core, "--core")
+        if len(values) != 2:
+            raise InvalidInputError(f"--core: {core!r} is not D,P (e.g. 20,1.0)")
+        if not 0.0 < values[1] <= 1.0:
+            raise InvalidInputError(f"--core: fill {values[1]:g} is outside (0, 1]")
+        composite = CompositeSpec(values[0], values[1])
+    points = None
+    if outline is not None:
+        points = [_numbers(p, "--outline") for p in outline.split(";") if p.strip()]
+        if any(len(p) != 2 for p in points):
+            raise InvalidInputError(f"--outline: {outline!r} is not X,Y;X,Y;...")
+    return PatchSpec("patch", "", (0.0, 0.0), diameter_mm, fill, composite=composite,
+                     outline_mm=points, conductive=conductive)

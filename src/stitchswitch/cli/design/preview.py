@@ -1,0 +1,150 @@
+"""``stitchswitch preview``: a 3D preview of a design (PNG, offscreen), or one patch's profile."""
+from __future__ import annotations
+
+import os
+import time
+
+import click
+
+from stitchswitch.cli import options
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.preview3d.camera import VIEWS
+from stitchswitch.preview3d.colours import COLOURS
+
+
+def _check_png(path: str) -> None:
+    ext = os.path.splitext(path)[1].lower()
+    if ext != ".png":
+        raise InvalidInputError(f"output {path!r}: unknown extension {ext or '(none)'!r}; "
+                                "the 3D preview is written as .png")
+
+
+def _write(fn, path):
+    try:
+        return fn()
+    except OSError as exc:
+        raise click.FileError(str(exc.filename or path), hint=exc.strerror or str(exc)) from None
+
+
+def _table(rows) -> str:
+    width = max(len(k) for k, _ in rows)
+    return "\n".join(f"{k:<{width}}  {v}" for k, v in rows)
+
+
+@click.command(cls=options.Command)
+@click.argument("design", required=False, type=click.Path(dir_okay=False))
+@click.option("--output", "-o", type=click.Path(dir_okay=False), required=True, metavar="FILE",
+              help="Image to write: .png (design), .png or .svg (single patch).")
+@click.option("--state", type=click.Choice(["up", "down", "mixed"]), default=None,
+              help="Pop every patch up or down, or mixed: each patch's own state "
+                   "(default mixed for a design, up for a single patch).")
+@click.option("--view", type=click.Choice(list(VIEWS)), default=None,
+              help="Camera: iso (default), top or side.")
+@click.option("--size", default=None, metavar="WxH",
+              help="Image size in pixels (default 1200x900).")
+@click.option("--mesh", "mesh_path", type=click.Path(dir_okay=False), default=None, metavar="FILE",
+              help="Also write the surface mesh (.vtu, .ply or .obj, garment mm).")
+@click.option("--color", "colour", type=click.Choice(list(COLOURS)), default=None,
+              help="Colour by height (default) or by constraint violations.")
+@click.option("--diameter", "-d", "diameter_mm", type=options.FINITE_FLOAT, default=None,
+              metavar="MM", help="Single-patch view: diameter on the pre-stretched fabric.")
+@click.option("--fill", "-p", type=options.FINITE_FLOAT, default=None, metavar="P",
+              help="Single-patch view: fill fraction in (0, 1].")
+@options.material_opt
+def preview(design, output, state, view, size, mesh_path, colour, diameter_mm, fill,
+            material_path):
+    """Render DESIGN (a design JSON file) in 3D offscreen, or, with --diameter and --fill
+    instead of DESIGN, draw one patch's profile with its keypoints and dimensions."""
+    from stitchswitch.preview3d import mesh_io
+
+    single = diameter_mm is not None or fill is not None
+    if design is not None and single:
+        raise InvalidInputError("give either a DESIGN file or --diameter/--fill, not both")
+    if design is None and not single:
+        raise InvalidInputError("give a DESIGN file, or --diameter and --fill for a single patch")
+    if mesh_path is not None:
+        mesh_io.check_mesh_path(mesh_path)
+    if single:
+        _single(output, diameter_mm, fill, state, view, size, colour, mesh_path, material_path)
+    else:
+        _design(design, output, state or "mixed", view or "iso", size, colour or "height",
+                mesh_path, material_path)
+
+
+def _design(path, output, state, view, size, colour, mesh_path, material_path):
+    from stitchswitch.layout.garment.design_io import load_design
+    from stitchswitch.preview3d import colours, mesh_io, render
+    from stitchswitch.preview3d.scene import build_scene
+    from stitchswitch.preview3d.spec import spec_from_design
+
+    if material_path is not None:
+        raise InvalidInputError("--material is for the single-patch view; a design file names "
+                                "its own material")
+    _check_png(output)
+    opts = render.RenderOptions(view=view, size=render.parse_size(size or "1200x900"),
+                                colour=colour)
+    t0 = time.perf_counter()
+    design = load_design(path)
+    status = violations = None
+    if colour == "violations":
+        patch_status, piece_status, violations = colours.design_status(design)
+        status = (patch_status, piece_status)
+    scene = build_scene(spec_from_design(design).with_state(state))
+    image, _ = render.render_scene(scene, opts, status)
+    if mesh_path is not None:
+        n_points = _write(lambda: mesh_io.write_scene_mesh(mesh_path, scene), mesh_path)
+    _write(lambda: render.write_png(output, image), output)
+    ups = sum(p.state == "up" for p in scene.patches)
+    rows = [("design", path),
+            ("pieces", str(len(scene.pieces))),
+            ("patches", f"{len(scene.patches)} ({ups} up, {len(scene.patches) - ups} down)"),
+            ("view", f"{view}, {opts.size[0]}x{opts.size[1]} px, colour by {colour}")]
+    if violations is not None:
+        n_err = sum(v.severity == "error" for v in violations)
+        rows.append(("violations", f"{n_err} errors, {len(violations) - n_err} warnings"))
+    rows.append(("image", output))
+    if mesh_path is not None:
+        rows.append(("mesh", f"{mesh_path} ({n_points} points)"))
+    rows.append(("time", f"{time.perf_counter() - t0:.2f} s"))
+    click.echo(_table(rows))
+
+
+def _single(output, diameter_mm, fill, state, view, size, colour, mesh_path, material_path):
+    from stitchswitch.preview3d import mesh_io, single
+    from stitchswitch.preview3d.profiles import single_profile
+    from stitchswitch.preview3d.scene import build_scene
+    from stitchswitch.preview3d.spec import PreviewPatch, PreviewSpec
+    from stitchswitch.reduced.model.material_io import load_material
+    from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
+
+    if diameter_mm is None or fill is None:
+        raise InvalidInputError("the single-patch view needs both --diameter and --fill")
+    for name, value in (("--view", view), ("--size", size), ("--color", colour)):
+        if value is not None:
+            raise InvalidInputError(f"{name} applies to the 3D preview of a design, "
+                                    "not to the single-patch view")
+    if state == "mixed":
+        raise InvalidInputError("--state mixed needs a design; a single patch is up or down")
+    state = state or "up"
+    ext = single.check_figure_path(output)
+    material = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
+    profile = single_profile(diameter_mm, fill, material)
+    name = "default" if material_path is None else str(material_path)
+    data = single.figure_bytes(profile, ext, state, name, material.eta)
+    if mesh_path is not None:
+        spec = PreviewSpec((), (PreviewPatch("patch", (0.0, 0.0), diameter_mm, fill, state),),
+                           material)
+        scene = build_scene(spec)
+        n_points = _write(lambda: mesh_io.write_scene_mesh(mesh_path, scene), mesh_path)
+    from stitchswitch.files.atomic import atomic_write_bytes
+    _write(lambda: atomic_write_bytes(output, data), output)
+    kp = profile.keypoints
+    rows = [("design", f"d = {diameter_mm:g} mm, fill = {fill:g}, popped {state}"),
+            ("profile", "design map" if profile.source == "map" else "direct solve"),
+            ("h", f"{kp.h_mm:.3f} mm"),
+            ("a", f"r_a = {kp.r_a_mm:.3f} mm, z_a = {kp.z_a_mm:.3f} mm"),
+            ("b", f"r_b = {kp.r_b_mm:.3f} mm, z_b = {kp.z_b_mm:.3f} mm ({kp.b_rule})"),
+            ("figure", output)]
+    if mesh_path is not None:
+        rows.append(("mesh", f"{mesh_path} ({n_points} points)"))
+    click.echo(_table(rows))

@@ -1,0 +1,131 @@
+"""``stitchswitch calibrate``: fit the material to measured keypoints by differential evolution."""
+from __future__ import annotations
+
+import json
+import math
+import pathlib
+import sys
+import time
+
+import click
+
+from stitchswitch.files.atomic import atomic_write_text
+from stitchswitch.cli import options
+from stitchswitch.executor import default_workers, make_executor
+from stitchswitch.reduced.calibration import evolution as cal
+from stitchswitch.reduced.model.material_io import canonical_json, load_material, material_hash
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
+
+
+FREE = tuple(n for n in cal.PARAMS if n != cal.SCALE_PARAM)
+
+
+def _record(material, mse, data, settings, start_label, **state) -> dict:
+    """Everything needed to trust and reproduce the fit, next to the material itself."""
+    return {
+        "material": material.as_dict(), "material_hash": material_hash(material),
+        "train_mse_mm2": mse, "free_parameters": list(FREE),
+        "fixed_parameters": {cal.SCALE_PARAM: getattr(material, cal.SCALE_PARAM)},
+        "bounds": {k: list(v) for k, v in cal.BOUNDS.items()},
+        "data": {"path": data.path, "sha256": data.sha256, "source": data.source,
+                 "n_train": len(data.split("train"))},
+        "start_material": start_label, "settings": settings, **state,
+    }
+
+
+def _write(out: pathlib.Path, record: dict) -> None:
+    """The material file (loadable with --material) and a sidecar with the provenance."""
+    from stitchswitch.reduced.model.params import Material
+
+    atomic_write_text(out, canonical_json(Material(**record["material"])))
+    atomic_write_text(out.with_name(out.stem + ".calibration.json"),
+                      json.dumps(record, indent=1, default=float) + "\n")
+
+
+@click.command(cls=options.Command)
+@click.argument("data_path", metavar="DATA.csv", type=click.Path(dir_okay=False, path_type=pathlib.Path))
+@options.material_opt
+@click.option("--maxiter", type=click.IntRange(min=1), default=30, show_default=True,
+              help="Differential-evolution generations.")
+@click.option("--popsize", type=click.IntRange(min=2), default=10, show_default=True,
+              help="Population size multiplier (scipy's popsize).")
+@click.option("--seed", type=int, default=0, show_default=True)
+@click.option("--workers", type=click.IntRange(min=1), default=None, metavar="N",
+              help="Worker processes (default: one per core).")
+@click.option("--scheduler", default=None, metavar="tcp://HOST:PORT",
+              help="Evaluate on a Dask distributed cluster instead of local processes.")
+@click.option("--resume", is_flag=True,
+              help="Start from the best point of a previous, interrupted run with the same --out.")
+@click.option("--out", "out", type=click.Path(dir_okay=False, path_type=pathlib.Path), required=True,
+              metavar="FILE", help="Calibrated material (JSON); provenance goes to FILE's "
+                                   "stem + .calibration.json.")
+@options.json_opt
+def calibrate(data_path, material_path, maxiter, popsize, seed, workers, scheduler, resume, out,
+              as_json):
+    """Fit the seven material coefficients to the training rows of DATA.csv.
+
+    The objective is the mean squared error over the five keypoints (the paper's). The best
+    point so far is written after every generation, so an interrupted run (Ctrl-C) leaves a
+    usable material and can be continued with --resume.
+    """
+    from stitchswitch.validation.measured import load_measurements
+
+    if not out.parent.is_dir():
+        raise options.InputError(f"--out: directory {str(out.parent)!r} does not exist")
+    data = load_measurements(data_path)
+    start = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
+    start_label = str(material_path) if material_path else "default"
+    train = data.split("train")
+    designs = [(r.d_mm, r.fill) for r in train]
+    measured = data.keypoints("train")
+    sidecar = out.with_name(out.stem + ".calibration.json")
+    if resume:
+        # DE starts again, with the previous best point as a member of its first population
+        # (scipy does not expose the population to save it)
+        if not sidecar.exists():
+            raise options.InputError(f"--resume: no previous run at {sidecar}")
+        previous = json.loads(sidecar.read_text())
+        if previous["data"]["sha256"] != data.sha256:
+            raise options.InputError(f"--resume: {sidecar} was fitted to other data "
+                                     f"(sha256 {previous['data']['sha256'][:12]})")
+        start = start.replace(**previous["material"])
+        start_label = f"resumed from {sidecar}"
+    workers = workers or default_workers()
+    settings = {"maxiter": maxiter, "popsize": popsize, "seed": seed, "workers": workers,
+                "scheduler": scheduler, "resumed": resume,
+                "objective": "MSE over h, r_a, z_a, r_b, z_b of the train rows (mm^2)"}
+    t0 = time.perf_counter()
+
+    def progress(gen, material, mse):
+        _write(out, _record(material, mse, data, settings, start_label, generations=gen,
+                            seconds=round(time.perf_counter() - t0, 2), message="in progress",
+                            interrupted=False))
+        click.echo(f"generation {gen}/{maxiter}: train MSE {mse:.4f} mm^2 "
+                   f"({time.perf_counter() - t0:.0f} s)", err=True)
+
+    with make_executor(workers, scheduler) as ex:
+        result = cal.calibrate(designs, measured, start, maxiter=maxiter, popsize=popsize,
+                               seed=seed, executor=ex if workers > 1 or scheduler else None,
+                               callback=progress)
+    record = _record(result.material, result.mse_mm2, data, settings, start_label,
+                     generations=result.generations, evaluations=result.evaluations,
+                     seconds=round(result.seconds, 2), message=result.message,
+                     interrupted=result.interrupted, identifiability=result.identifiability)
+    _write(out, record)
+    if as_json:
+        click.echo(json.dumps(record, default=float))
+        return
+    rmse = math.sqrt(result.mse_mm2) if math.isfinite(result.mse_mm2) else float("nan")
+    state = "interrupted, best point so far" if result.interrupted else result.message
+    click.echo(f"wrote {out} ({state}); train RMSE {rmse:.3f} mm over {len(train)} rows, "
+               f"{result.generations} generations in {result.seconds:.0f} s")
+    for name in cal.PARAMS:
+        tag = " (fixed: overall scale)" if name == cal.SCALE_PARAM else ""
+        click.echo(f"  {name:12s} {getattr(result.material, name):10.4g}{tag}")
+    weak = result.identifiability.get("weak_directions", [])
+    if weak:
+        click.echo("poorly identified combinations (small singular values of the keypoint Jacobian):")
+        for w in weak:
+            click.echo(f"  {w['direction']}  (singular value {w['singular_value']:.2e})")
+    if result.interrupted:
+        sys.exit(130)

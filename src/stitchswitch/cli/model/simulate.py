@@ -1,0 +1,96 @@
+"""``stitchswitch simulate``: solve one patch design and print its keypoints."""
+from __future__ import annotations
+
+import json
+import logging
+import math
+
+import click
+import numpy as np
+
+from stitchswitch.files.atomic import atomic_write_text
+from stitchswitch.cli import options
+from stitchswitch.reduced.model.material_io import load_material, material_hash
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.solvers.solve import Solution, solve
+
+log = logging.getLogger(__name__)
+
+
+@click.command(cls=options.Command)
+@options.diameter_opt
+@options.fill_opt
+@options.material_opt
+@options.solver_opt
+@options.max_iter_opt
+@options.json_opt
+@click.option("--profile-csv", type=click.Path(dir_okay=False), default=None, metavar="FILE",
+              help="Also write the profile (columns R_mm,r_mm,z_mm) to FILE.")
+def simulate(diameter_mm, fill, material_path, solver, max_iter, as_json, profile_csv):
+    """Equilibrium profile of one circular patch (default: d = 40 mm, fill = 0.8).
+
+    Prints h, r_a, z_a, r_b, z_b (mm) and the solver certificate. A solve that does not
+    converge is still reported, with a warning on stderr, and exits 0; the JSON output
+    carries "converged": false.
+    """
+    patch = Patch(diameter_mm, fill)
+    material = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
+    log.info("solving d = %g mm, fill = %g with %s, material %s (sha256 %s)",
+             patch.diameter_mm, patch.fill, solver, material_path or "default",
+             material_hash(material)[:12])
+    sol = solve(patch, material, solver=solver, max_iter=max_iter)
+    if not sol.converged:
+        log.warning("the %s solve did not converge (residual %.2e > tol %.0e after %d "
+                    "iterations); the result is not a certified equilibrium",
+                    solver, sol.residual, sol.tol, sol.iterations)
+    if profile_csv is not None:
+        try:
+            atomic_write_text(profile_csv, profile_csv_text(sol))
+        except OSError as exc:
+            raise click.FileError(profile_csv, hint=exc.strerror or str(exc)) from None
+    click.echo(json.dumps(_jsonable(sol.as_dict())) if as_json else table(sol, material_path))
+
+
+def _jsonable(d: dict) -> dict:
+    """numpy scalars to Python ones; nan/inf to null so the output is strict JSON."""
+    out = {}
+    for key, value in d.items():
+        if isinstance(value, np.generic):
+            value = value.item()
+        if isinstance(value, float) and not math.isfinite(value):
+            value = None
+        out[key] = value
+    return out
+
+
+def table(sol: Solution, material_path=None) -> str:
+    """The human-readable summary: one aligned ``name  value`` row per quantity."""
+    kp = sol.keypoints
+    mm = lambda v: f"{v:.3f} mm"  # noqa: E731
+    rows = [
+        ("design", f"d = {sol.patch.diameter_mm:g} mm, fill = {sol.patch.fill:g}"),
+        ("material", str(material_path) if material_path else "default"),
+        ("solver", sol.solver),
+        ("h", mm(kp.h_mm)),
+        ("r_a", mm(kp.r_a_mm)),
+        ("z_a", mm(kp.z_a_mm)),
+        ("r_b", f"{mm(kp.r_b_mm)}  ({kp.b_rule})" if kp.b_rule else mm(kp.r_b_mm)),
+        ("z_b", mm(kp.z_b_mm)),
+        ("energy", f"{sol.energy:.6g}"),
+        ("residual", f"{sol.residual:.2e}  (tol {sol.tol:.0e})"),
+        ("converged", "yes" if sol.converged else "NO"),
+        ("iterations", str(sol.iterations)),
+        ("solve time", f"{sol.solve_ms:.0f} ms"),
+    ]
+    width = max(len(name) for name, _ in rows)
+    return "\n".join(f"{name:<{width}}  {value}" for name, value in rows)
+
+
+def profile_csv_text(sol: Solution) -> str:
+    """The profile as CSV: a ``#`` comment line, a header, one row per node (exact floats)."""
+    lines = [f"# stitchswitch profile, d_mm={sol.patch.diameter_mm!r}, fill={sol.patch.fill!r}, "
+             f"solver={sol.solver}",
+             "R_mm,r_mm,z_mm"]
+    lines += [f"{R!r},{r!r},{z!r}"
+              for R, r, z in zip(sol.R_mm.tolist(), sol.r_mm.tolist(), sol.z_mm.tolist())]
+    return "\n".join(lines) + "\n"

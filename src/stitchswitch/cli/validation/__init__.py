@@ -1,0 +1,2 @@
+"""Subcommands on measured data: ``validate`` and ``discover``, over ``stitchswitch.validation``.
+"""

@@ -1,0 +1,13 @@
+"""Files the package reads and writes, each way of doing it once.
+
+* ``atomic``: ``atomic_write_bytes`` / ``atomic_write_text``: a reader sees the old file or the
+  whole new one, never a part.
+* ``outdir``: output folders written as a whole (``check_outdir`` before computing, ``building``
+  and ``write_outdir`` after), a non-empty target refused unless forced.
+* ``textio``: ``read_text``, ``csv_records``, ``csv_number``: user text files with one clear error
+  per problem, naming the file and the line.
+* ``revolution``: ``surface_of_revolution`` of a 1D profile and ``write_mesh`` (VTU/PLY/OBJ
+  through meshio).
+
+Nothing here knows about the model: every other sub-package may import it.
+"""

@@ -1,0 +1,166 @@
+"""Machine embroidery export behind one format registry (meshio's registry is the model).
+
+Every format is written by pyembroidery from a stitch plan converted to its 0.1 mm units (y
+down, as pyembroidery expects). Before that, each move longer than the format's limit is
+subdivided: a long stitch into stitches, a long jump into jumps, each at most the limit minus one
+unit long (the margin absorbs the rounding to 0.1 mm), so nothing is truncated by the writer. The
+limits are pyembroidery 1.5.1's own writer constants (``MAX_STITCH_DISTANCE``, 0.1 mm per axis):
+
+=====  ==========  =====================================================
+DST    12.1 mm     +-121 units per record (balanced ternary, 3 bytes)
+EXP    12.7 mm     signed byte per axis
+JEF    12.7 mm     signed byte per axis
+PES    204.7 mm    PEC long form, 12-bit signed per axis
+VP3    25.5 mm     pyembroidery's limit (byte form +-127, long form 16-bit)
+=====  ==========  =====================================================
+
+JEF: trims are written (pyembroidery's ``trims=True``: three zero jumps, the Janome trim), the
+header date is fixed so identical input gives identical bytes, and the hoop code is the chosen
+hoop's (``hoops`` explains the source). Every file ends with the format's END record.
+"""
+from __future__ import annotations
+
+import io
+import logging
+import math
+import pathlib
+import struct
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from stitchswitch.files.atomic import atomic_write_bytes
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.embroidery import stitches as st
+from stitchswitch.layout.embroidery.hoops import Hoop, choose_hoop
+
+log = logging.getLogger(__name__)
+
+JEF_FIXED_DATE = "20000101000000"
+
+
+@dataclass(frozen=True)
+class Format:
+    name: str
+    extensions: tuple[str, ...]
+    writer: Callable[[object, io.BytesIO, Hoop | None], None]
+    max_move_mm: float
+
+
+FORMATS: dict[str, Format] = {}
+
+
+def register_format(name: str, extensions, writer, max_move_mm: float) -> None:
+    """Register a writer ``writer(pattern, stream, hoop)`` for ``name`` and its extensions."""
+    FORMATS[name.lower()] = Format(name.lower(), tuple(e.lower() for e in extensions), writer,
+                                   float(max_move_mm))
+
+
+def supported_formats() -> list[str]:
+    return sorted(FORMATS)
+
+
+def get_format(name: str) -> Format:
+    fmt = FORMATS.get(str(name).lower().lstrip("."))
+    if fmt is None:
+        raise InvalidInputError(f"unsupported embroidery format {name!r}; supported: "
+                                + ", ".join(supported_formats()))
+    return fmt
+
+
+def format_from_path(path) -> Format:
+    ext = pathlib.Path(path).suffix.lower()
+    for fmt in FORMATS.values():
+        if ext in fmt.extensions:
+            return fmt
+    raise InvalidInputError(f"unknown embroidery file extension {ext!r} of {str(path)!r}; "
+                            "supported: " + ", ".join(supported_formats()))
+
+
+# --- conversion ----------------------------------------------------------------------------
+
+def subdivide(plan: st.StitchPlan, max_move_mm: float) -> st.StitchPlan:
+    """The plan with every STITCH/JUMP move split into equal parts of at most
+    ``max_move_mm - 0.1`` mm (so that the moves stay within the limit after rounding)."""
+    limit = max_move_mm - 0.1
+    xy, cmd = [plan.xy_mm[0]], [plan.commands[0]]
+    for k in range(1, len(plan.commands)):
+        a, b, c = plan.xy_mm[k - 1], plan.xy_mm[k], plan.commands[k]
+        if c in (st.STITCH, st.JUMP):
+            n = max(1, int(math.ceil(np.linalg.norm(b - a) / limit - 1e-12)))
+            for i in range(1, n):
+                xy.append(a + (b - a) * i / n)
+                cmd.append(c)
+        xy.append(b)
+        cmd.append(c)
+    return st.StitchPlan(np.asarray(xy), np.asarray(cmd, dtype=np.int8), plan.threads,
+                         plan.stitches_per_minute)
+
+
+def to_pattern(plan: st.StitchPlan):
+    """A pyembroidery ``EmbPattern`` (0.1 mm, y down) with the plan's records and threads."""
+    import pyembroidery as pe
+    pattern = pe.EmbPattern()
+    for t in plan.threads:
+        thread = pe.EmbThread()
+        thread.set_color(*t.rgb)
+        thread.description = t.name
+        pattern.add_thread(thread)
+    codes = {st.STITCH: pe.STITCH, st.JUMP: pe.JUMP, st.TRIM: pe.TRIM,
+             st.COLOR_CHANGE: pe.COLOR_CHANGE, st.END: pe.END}
+    for (x, y), c in zip(plan.xy_mm.tolist(), plan.commands.tolist()):
+        pattern.add_stitch_absolute(codes[c], round(x * 10.0), round(-y * 10.0))
+    return pattern
+
+
+def encode(plan: st.StitchPlan, fmt: str, hoop: Hoop | None = None) -> bytes:
+    """The file bytes of ``plan`` in format ``fmt`` (deterministic)."""
+    f = get_format(fmt)
+    if hoop is None:
+        x0, y0, x1, y1 = plan.extents_mm()
+        hoop = choose_hoop(x1 - x0, y1 - y0)
+    pattern = to_pattern(subdivide(plan, f.max_move_mm))
+    buf = io.BytesIO()
+    f.writer(pattern, buf, hoop)
+    return buf.getvalue()
+
+
+def write(path, plan: st.StitchPlan, fmt: str | None = None, hoop: Hoop | None = None) -> None:
+    """Write ``plan`` to ``path`` atomically (format from ``fmt`` or the extension)."""
+    name = get_format(fmt).name if fmt else format_from_path(path).name
+    atomic_write_bytes(path, encode(plan, name, hoop))
+
+
+# --- the writers -----------------------------------------------------------------------
+
+def _pe_writer(method: str, settings: dict | None = None):
+    def writer(pattern, stream, hoop):
+        import pyembroidery as pe
+        getattr(pe, method)(pattern, stream, dict(settings or {}))
+    return writer
+
+
+def _write_jef(pattern, stream, hoop):
+    import pyembroidery as pe
+    tmp = io.BytesIO()
+    pe.write_jef(pattern, tmp, {"trims": True, "date": JEF_FIXED_DATE})
+    data = bytearray(tmp.getvalue())
+    if hoop is not None and hoop.jef_code is not None:
+        struct.pack_into("<i", data, 32, hoop.jef_code)
+    elif hoop is not None:
+        log.warning("no published JEF hoop code for %s; kept pyembroidery's size-based code %d",
+                    hoop, struct.unpack_from("<i", data, 32)[0])
+    stream.write(bytes(data))
+
+
+def _limit(module: str) -> float:
+    import importlib
+    return importlib.import_module(f"pyembroidery.{module}").MAX_STITCH_DISTANCE / 10.0
+
+
+register_format("jef", [".jef"], _write_jef, _limit("JefWriter"))
+register_format("dst", [".dst"], _pe_writer("write_dst"), _limit("DstWriter"))
+register_format("pes", [".pes"], _pe_writer("write_pes"), _limit("PesWriter"))
+register_format("exp", [".exp"], _pe_writer("write_exp"), _limit("ExpWriter"))
+register_format("vp3", [".vp3"], _pe_writer("write_vp3"), _limit("Vp3Writer"))

@@ -1,0 +1,167 @@
+"""Stitch geometry of a design-file patch: plain, composite (core + surround) or non-circular.
+
+Paper, section 5 ("Design Variations"): "a high-fill central patch can be embedded within a
+lower-fill surrounding region to create a functional bistable element with a custom outer
+shape". A patch of the design file (``layout.garment.design.PatchSpec``) is therefore one lattice of
+equilateral triangles (side ``resolution_mm``, a vertex at the centre) split into regions, each
+with its own fill:
+
+* the **core** (only with ``composite``): the lattice cells (whole triangles) whose centroid lies
+  in the disc of ``core_diameter_mm``; their stitched area equals ``core_fill`` times the area of
+  those cells (the disc rounded to whole cells, so that a core fill of 1 is attainable);
+* the **surround**: every other triangle overlapping the outer boundary (the circle of
+  ``diameter_mm``, or the ``outline_mm`` polygon); their stitched area equals ``fill`` times the
+  area of the outer boundary minus the core cells.
+
+Within a region every triangle is scaled about its centroid by one common factor, solved so
+that the region's stitched area (after clipping to the outer boundary) meets its target, as in
+``patch_geometry`` (whose plain circular patch is exactly the no-composite, no-outline case).
+A triangle clipped by a non-convex outline can become non-convex or split; it is then cut into
+convex parts (constrained Delaunay), because the fill stitches need convex pieces.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+from scipy.optimize import brentq
+
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.embroidery import tessellation as tess
+from stitchswitch.layout.embroidery.patch_geometry import PatchGeometry, make_patch, parse_selection
+
+MIN_PIECE_AREA_MM2 = 0.1
+
+
+def geometry_for(spec, resolution_mm: float = 5.0) -> PatchGeometry:
+    """The tessellated geometry of one patch spec, centred at the origin (hoop coordinates)."""
+    selection = parse_selection(spec.conductive) if spec.conductive else None
+    composite = getattr(spec, "composite", None)
+    outline = getattr(spec, "outline_mm", None)
+    if composite is None and outline is None:
+        return make_patch(spec.diameter_mm, spec.fill, resolution_mm, selection)
+    radius = spec.diameter_mm / 2.0
+    if composite is not None and not 0 < composite.core_diameter_mm < spec.diameter_mm:
+        raise InvalidInputError(f"patch {spec.id}: core diameter {composite.core_diameter_mm:g} mm "
+                                f"must be > 0 and below the diameter {spec.diameter_mm:g} mm")
+    if outline is not None:
+        _check_outline(spec, np.asarray(outline, dtype=float), radius, composite)
+        clip = _PolygonClip(shapely.Polygon(np.asarray(outline, dtype=float)))
+    else:
+        clip = _DiskClip(radius)
+    tris = tess.lattice_triangles(radius, resolution_mm)
+    tris = tris[clip.overlap(tris) > 1e-12 * resolution_mm ** 2]
+    centroids = tris.mean(axis=1)
+    core = np.zeros(len(tris), dtype=bool)
+    core_area = 0.0
+    if composite is not None:
+        rc = composite.core_diameter_mm / 2.0
+        core = np.hypot(centroids[:, 0], centroids[:, 1]) < rc
+        core_area = float(clip.overlap(tris[core]).sum())
+        if not core.any():
+            raise InvalidInputError(f"patch {spec.id}: the core ({composite.core_diameter_mm:g} mm) "
+                                    f"holds no triangle at resolution {resolution_mm:g} mm")
+    regions = [(~core, spec.fill * (clip.area - core_area))]
+    if composite is not None:
+        regions.append((core, composite.core_fill * core_area))
+    scale = np.ones(len(tris))
+    keep = np.ones(len(tris), dtype=bool)
+    for mask, target in regions:
+        idx = np.flatnonzero(mask)
+        for _ in range(5):            # drop unstitchable slivers, then solve again
+            s = _solve_scale(tris[idx], clip, target)
+            small = clip.overlap(_scaled(tris[idx], s)) < MIN_PIECE_AREA_MM2
+            if not small.any():
+                break
+            keep[idx[small]] = False
+            idx = idx[~small]
+        scale[idx] = s
+    tris, scale, centroids = tris[keep], scale[keep], centroids[keep]
+    scaled = centroids[:, None, :] + scale[:, None, None] * (tris - centroids[:, None, :])
+    pieces, owner = clip.pieces(scaled)
+    areas = np.array([tess.polygon_area(p) for p in pieces])
+    lattice_centroids = centroids[owner]
+    mask = (np.zeros(len(pieces), dtype=bool) if selection is None
+            else selection.select(lattice_centroids, resolution_mm))
+    return PatchGeometry(float(spec.diameter_mm), float(spec.fill),
+                         float(resolution_mm), float(np.max(scale)), lattice_centroids,
+                         tuple(pieces), mask, areas, outline_area_mm2=float(clip.area),
+                         piece_scale=scale[owner])
+
+
+def _check_outline(spec, outline: np.ndarray, radius: float, composite) -> None:
+    if composite is None:
+        raise InvalidInputError(f"patch {spec.id}: a custom outline needs a composite core "
+                                "(the circular functional element)")
+    if outline.ndim != 2 or outline.shape[1] != 2 or len(outline) < 3:
+        raise InvalidInputError(f"patch {spec.id}: outline_mm needs at least 3 (x, y) points")
+    boundary = shapely.Polygon(outline)
+    if not boundary.is_valid or boundary.area <= 0:
+        raise InvalidInputError(f"patch {spec.id}: outline_mm is not a simple polygon")
+    far = float(np.hypot(outline[:, 0], outline[:, 1]).max())
+    if far > radius * (1 + 1e-9):
+        raise InvalidInputError(f"patch {spec.id}: the outline reaches {far:.2f} mm from the centre, "
+                                f"beyond the bounding circle of diameter {2 * radius:g} mm")
+    core = shapely.Point(0.0, 0.0).buffer(composite.core_diameter_mm / 2.0, quad_segs=64)
+    if not boundary.buffer(1e-6).contains(core):
+        raise InvalidInputError(f"patch {spec.id}: the core disc ({composite.core_diameter_mm:g} mm) "
+                                "is not inside the outline")
+
+
+def _scaled(tris: np.ndarray, s: float) -> np.ndarray:
+    c = tris.mean(axis=1, keepdims=True)
+    return c + s * (tris - c)
+
+
+def _solve_scale(tris: np.ndarray, clip, target: float) -> float:
+    f = lambda s: float(clip.overlap(_scaled(tris, s)).sum()) - target  # noqa: E731
+    if f(1.0) <= 0.0:
+        return 1.0
+    return brentq(f, 1e-9, 1.0, xtol=1e-12, rtol=1e-12)
+
+
+class _DiskClip:
+    def __init__(self, radius: float):
+        self.radius = radius
+        self.area = math.pi * radius * radius
+
+    def overlap(self, tris: np.ndarray) -> np.ndarray:
+        return tess.disk_overlap_area(tris, self.radius)
+
+    def pieces(self, tris: np.ndarray):
+        out = [tess.clip_to_disk(t, self.radius) for t in tris]
+        return out, np.arange(len(tris))
+
+
+class _PolygonClip:
+    def __init__(self, polygon):
+        self.polygon = polygon
+        shapely.prepare(polygon)
+        self.area = float(polygon.area)
+
+    def overlap(self, tris: np.ndarray) -> np.ndarray:
+        return shapely.area(shapely.intersection(shapely.polygons(tris), self.polygon))
+
+    def pieces(self, tris: np.ndarray):
+        out, owner = [], []
+        for i, geom in enumerate(shapely.intersection(shapely.polygons(tris), self.polygon)):
+            for part in _convex_parts(geom):
+                out.append(part)
+                owner.append(i)
+        return out, np.asarray(owner, dtype=int)
+
+
+def _convex_parts(geom) -> list[np.ndarray]:
+    """Convex CCW pieces of a clipped triangle (a polygon, or several after a concave cut)."""
+    polys = [g for g in getattr(geom, "geoms", [geom]) if g.geom_type == "Polygon" and g.area > 0]
+    parts = []
+    for poly in polys:
+        poly = shapely.orient_polygons(poly)
+        if math.isclose(poly.area, poly.convex_hull.area, rel_tol=1e-9):
+            parts.append(np.asarray(poly.exterior.coords)[:-1])
+            continue
+        for tri in shapely.constrained_delaunay_triangles(poly).geoms:
+            tri = shapely.orient_polygons(tri)
+            parts.append(np.asarray(tri.exterior.coords)[:-1])
+    return [p for p in parts if tess.polygon_area(p) >= 1e-9]

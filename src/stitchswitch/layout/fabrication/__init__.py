@@ -1,0 +1,9 @@
+"""Fabrication mode (paper, section 5, Fig. 11): from a design to a folder of machine files.
+
+* ``fabricate``: ``fabricate(design, outdir, FabricateOptions) -> FabricationResult``.
+* ``grouping/``: hoop grouping (garment and free mode).
+* ``order``: the stitching order of the hoopings; ``plan``: the stitch plan of one hooping.
+* ``sheet``: the fabrication sheet (Markdown, HTML); ``layout_plot``: the hooping figures.
+
+The top of ``layout``: it imports ``embroidery``, ``garment`` and ``check``.
+"""

@@ -1,0 +1,246 @@
+"""Fabrication mode (paper, section 5 and Fig. 11): from a design to a folder of machine files.
+
+``fabricate(design, outdir, options)``:
+
+1. the machine and its hoops from the catalogue (``machines``; the design's ``machine.hoop`` or
+   ``options.hoop`` restricts the grouping to one hoop);
+2. footprints on the fabric stretched by the material's eta (``hoop_footprints``);
+3. hoop grouping, garment or free mode (``hoop_grouping``), then the stitching order
+   (``hoop_order``);
+4. per hooping: the stitch plan (``hoop_plan``, patch geometry from
+   ``patch_design.geometry_for``), the embroidery file through the export registry
+   (``export.encode``, with the hooping's hoop for the JEF code) and the layout as PNG and SVG
+   (``hoop_layout_plot``);
+5. an overview (PNG, SVG), ``fabrication.json``, and the sheet as ``fabrication.md`` and
+   ``fabrication.html`` (``fabrication_sheet``).
+
+Everything is built in memory and written as one directory (``files.outdir``): nothing is
+left behind on an error, and a non-empty target is refused unless ``force``. The output holds no
+timestamps or timings, so the same input gives byte-identical files (a time limit that stops
+HiGHS can make the grouping depend on the machine's speed; the report says when it did).
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+from dataclasses import dataclass
+
+import numpy as np
+
+from stitchswitch import __version__
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.embroidery import export
+from stitchswitch.files.outdir import check_outdir, write_outdir
+from stitchswitch.layout.fabrication.sheet import html_page, markdown
+from stitchswitch.layout.fabrication.grouping.footprints import stretch
+from stitchswitch.layout.fabrication.grouping.group import MODES, group
+from stitchswitch.layout.fabrication.layout_plot import alignment_marks, hooping_figure, overview_figure
+from stitchswitch.layout.fabrication.order import StitchingOrder, order_hoopings
+from stitchswitch.layout.fabrication.plan import plan_hooping
+from stitchswitch.layout.fabrication.grouping.result import Grouping
+from stitchswitch.layout.embroidery.machines import catalogue
+from stitchswitch.layout.embroidery.stitches import StitchParams
+
+GENERATOR = "stitchswitch fabricate"
+
+
+@dataclass(frozen=True)
+class FabricateOptions:
+    machine: str | None = None        # default: the design's machine
+    machines_file: str | None = None  # the user's catalogue, added to the built-in one
+    hoop: str | None = None           # one hoop only (default: the design's, else all)
+    fmt: str | None = None            # default: the machine's default format
+    mode: str = "garment"
+    time_limit_s: float | None = 10.0
+    spacing_mm: float = 10.0          # free mode: gap between patches
+    resolution_mm: float = 5.0        # triangle side of the patch tessellation
+    force: bool = False
+
+
+@dataclass(frozen=True, eq=False)
+class FabricationResult:
+    outdir: str
+    grouping: Grouping
+    order: StitchingOrder
+    files: tuple[str, ...]
+    doc: dict
+
+
+def _r(v, digits: int = 3):
+    if isinstance(v, (list, tuple, np.ndarray)):
+        return [_r(x, digits) for x in v]
+    return round(float(v), digits) + 0.0
+
+
+def _hoops(machine, design, options):
+    name = options.hoop or (design.machine.hoop if design.machine.name.lower()
+                            == machine.name.lower() else None)
+    return (machine.hoop(name),) if name else machine.hoops
+
+
+def _design_info(design) -> dict:
+    import os
+    if design.path is None:
+        return {"file": "(in memory)", "sha256": None}
+    with open(design.path, "rb") as f:
+        digest = hashlib.sha256(f.read()).hexdigest()
+    return {"file": os.path.basename(design.path), "sha256": digest}
+
+
+def _instructions(mode: str, eta: float) -> list[str]:
+    pct = f"{100 * eta:.0f} %"
+    common = (f"Place the fabric over one sheet of water-soluble stabilizer and stretch it "
+              f"uniformly to {eta:g}x in both directions ({pct} of its relaxed size; paper, "
+              "appendix A); a drawn grid and pins keep the stretch even.")
+    if mode == "garment":
+        return [
+            "Before stretching, draw the alignment marks of every hooping on the relaxed piece "
+            "at the garment coordinates listed below (the hoop template's centre and side "
+            f"marks divided by {eta:g}), and a reference grid.",
+            common,
+            "Hoop each hooping so that its five marks meet the hoop template's centre and side "
+            "marks; a hooping noted 'turned 90 degrees' has the hoop a quarter turn "
+            "counter-clockwise on the piece (the hoop's x axis along the piece's y axis).",
+            "Stitch the hoopings in the order given (it keeps the frame off stitched patches "
+            "where possible); re-stretch and re-mark for every hooping.",
+            "Release the fabric and rinse away the stabilizer; the patches deform on release.",
+        ]
+    return [
+        "Every hooping is a separate piece of fabric, large enough for the hoop and its frame.",
+        common,
+        "Hoop it centred on the hoop template; stitch the hooping's file.",
+        "Release, rinse away the stabilizer, cut each patch out with a seam allowance and sew "
+        "it onto the garment at the garment centre listed for it.",
+    ]
+
+
+def _limits(doc_hoops, fmt: str, mode: str, grouping: Grouping) -> list[str]:
+    out = ["Hoop margins and frame widths come from the machine catalogue; the built-in "
+           "Janome 550E values are estimates, not measured on a real hoop (give yours with "
+           "--machines).",
+           "Times count stitching only, at the machine's top speed; trims, colour changes, "
+           "bobbin changes and hooping add to them."]
+    if fmt == "jef" and any(h["jef_code"] is None for h in doc_hoops):
+        out.append("The JEF hoop code of the RE36b is not published: its files keep "
+                   "pyembroidery's size-based code (docs/embroidery.md).")
+    if mode == "garment":
+        out.append("Garment coordinates times eta are taken as hoop coordinates: this assumes a "
+                   "uniform stretch; check the marks after stretching.")
+    else:
+        out.append("The grouping is optimal over the generated hoop loads at most; the lower "
+                   f"bound of {grouping.report.hoopings_lower_bound} hooping(s) holds for any "
+                   "packing.")
+    if grouping.report.method != "mip":
+        out.append("HiGHS was stopped by the time limit: a greedy grouping is used.")
+    return out
+
+
+def fabricate(design, outdir, options: FabricateOptions = FabricateOptions(),
+              geometry=None) -> FabricationResult:
+    """Write the fabrication folder of ``design`` to ``outdir`` (see the module docstring).
+    ``geometry``: spec -> PatchGeometry (default ``patch_design.geometry_for`` at
+    ``options.resolution_mm``)."""
+    check_outdir(outdir, options.force)
+    if options.mode not in MODES:
+        raise InvalidInputError(f"unknown mode {options.mode!r}; the modes are "
+                                + ", ".join(MODES))
+    machine = catalogue(options.machines_file).machine(options.machine or design.machine.name)
+    hoops = _hoops(machine, design, options)
+    fmt = export.get_format(options.fmt or machine.default_format)
+    eta = float(design.material_object().eta)
+    feet, pieces = stretch(design, eta)
+    grouping = group(feet, pieces, hoops, options.mode, options.time_limit_s, options.spacing_mm)
+    order = order_hoopings(grouping.hoopings, feet)
+    if geometry is None:
+        from stitchswitch.layout.embroidery.patch_design import geometry_for
+        geometry = lambda spec: geometry_for(spec, options.resolution_mm)  # noqa: E731
+    specs = {p.id: p for p in design.patches}
+    cache: dict = {}
+
+    def cached(spec):                       # each patch's geometry is built once
+        if spec.id not in cache:
+            cache[spec.id] = geometry(spec)
+        return cache[spec.id]
+
+    prm = StitchParams(stitches_per_minute=machine.stitches_per_minute)
+    files: dict[str, bytes] = {}
+    images: dict[str, bytes] = {}
+    doc_hoops = []
+    total = len(order.hoopings)
+    stitched: set[str] = set()
+    width = max(2, len(str(total)))
+    for k, h in enumerate(order.hoopings, start=1):
+        stem = f"hoop{k:0{width}d}"
+        hplan = plan_hooping(h, specs, cached, prm)
+        names = {"embroidery": f"{stem}.{fmt.name}", "png": f"{stem}.png", "svg": f"{stem}.svg"}
+        files[names["embroidery"]] = export.encode(hplan.plan, fmt.name, h.hoop)
+        conflict_ids = {c.patch for c in order.conflicts if c.hooping == k - 1}
+        figs = hooping_figure(k, total, h, hplan, specs, feet, pieces, stitched, conflict_ids)
+        files[names["png"]], files[names["svg"]] = figs["png"], figs["svg"]
+        images[names["png"]] = files[names["png"]]
+        stitched |= set(h.patch_ids)
+        doc_hoops.append(_hooping_doc(k, h, hplan, specs, eta, names))
+    for kind, data in overview_figure(order.hoopings, feet, pieces).items():
+        files[f"overview.{kind}"] = data
+    images["overview.png"] = files["overview.png"]
+    doc = _doc(design, machine, fmt.name, options, eta, grouping, order, doc_hoops)
+    files["fabrication.json"] = (json.dumps(doc, indent=2, allow_nan=False) + "\n").encode("utf-8")
+    files["fabrication.md"] = markdown(doc).encode("utf-8")
+    files["fabrication.html"] = html_page(doc, images).encode("utf-8")
+    write_outdir(outdir, dict(sorted(files.items())), options.force)
+    return FabricationResult(str(outdir), grouping, order, tuple(sorted(files)), doc)
+
+
+def _hooping_doc(k, h, hplan, specs, eta, names) -> dict:
+    plan = hplan.plan
+    d = {"number": k, "hoop": h.hoop.name, "field_mm": _r([h.hoop.width_mm, h.hoop.height_mm]),
+         "margin_mm": _r(h.hoop.margin_mm), "frame_width_mm": _r(h.hoop.frame_width_mm),
+         "jef_code": h.hoop.jef_code, "orientation_deg": h.orientation_deg, "piece": h.piece}
+    if h.piece is not None:
+        marks = h.to_piece(np.array(alignment_marks(h.hoop))) / eta
+        d.update(centre_stretched_mm=_r(h.centre_mm),
+                 centre_garment_mm=_r(np.array(h.centre_mm) / eta),
+                 alignment_marks_garment_mm=_r(marks))
+    d["files"] = names
+    d["patches"] = [{"order": n, "id": pid, "position_hoop_mm": _r(xy),
+                     "centre_garment_mm": _r(specs[pid].centre_mm),
+                     "diameter_mm": _r(specs[pid].diameter_mm), "fill": _r(specs[pid].fill, 4),
+                     "conductive": specs[pid].conductive}
+                    for n, (pid, xy) in enumerate(zip(h.patch_ids, h.positions_mm), start=1)]
+    d["threads"] = [{"role": t.role, "colour": t.colour, "patches": list(t.patches)}
+                    for t in hplan.threads]
+    d.update(stitches=plan.stitch_count, trims=plan.trim_count, jumps=plan.jump_count,
+             colour_changes=plan.color_changes, thread_length_m=_r(plan.thread_length_mm / 1000),
+             time_min=_r(plan.sewing_time_min, 2))
+    return d
+
+
+def _doc(design, machine, fmt, options, eta, grouping, order, doc_hoops) -> dict:
+    rep = grouping.report
+    g = {"method": rep.method, "status": rep.status, "optimal": rep.optimal,
+         "mip_gap": None if rep.mip_gap is None else _r(rep.mip_gap, 6),
+         "hoopings": grouping.count, "hoop_types": grouping.hoop_types,
+         "hoopings_lower_bound": rep.hoopings_lower_bound,
+         "first_fit_decreasing_hoopings": rep.greedy_hoopings, "candidates": rep.candidates,
+         "time_limit_s": options.time_limit_s, "note": rep.note}
+    if grouping.mode == "free":
+        g["spacing_mm"] = _r(options.spacing_mm)
+    return {
+        "generator": GENERATOR, "version": __version__,
+        "design": _design_info(design), "mode": grouping.mode,
+        "machine": {"name": machine.name, "label": machine.label,
+                    "stitches_per_minute": machine.stitches_per_minute, "source": machine.source},
+        "format": fmt,
+        "stretch": {"eta": _r(eta), "instructions": _instructions(grouping.mode, eta)},
+        "grouping": g,
+        "order": {"exact": order.exact,
+                  "conflicts": [{"hooping": c.hooping + 1, "patch": c.patch,
+                                 "stitched_in_hooping": c.stitched_in + 1}
+                                for c in order.conflicts]},
+        "hoopings": doc_hoops,
+        "totals": {"hoopings": len(doc_hoops), "patches": sum(len(h["patches"]) for h in doc_hoops),
+                   "stitches": sum(h["stitches"] for h in doc_hoops),
+                   "time_min": _r(sum(h["time_min"] for h in doc_hoops), 2)},
+        "files": {"overview_png": "overview.png", "overview_svg": "overview.svg"},
+        "limits": _limits(doc_hoops, fmt, grouping.mode, grouping),
+    }

@@ -1,0 +1,240 @@
+"""Candidate hoop placements on a stretched garment piece (garment mode).
+
+A placement is a hoop type, an orientation (0 or 90 degrees) and the position of its field
+centre on the stretched piece. It *holds* patch i when the disc of i lies in the field shrunk by
+the margin: |x_i - cx| <= W/2 - r_i and |y_i - cy| <= H/2 - r_i (W x H the field minus margins
+in that orientation). It is *allowed* when the hoop's outer rectangle (field plus frame ring)
+lies inside the piece outline: the frame must clamp fabric all round.
+
+Enumeration (exact for the sets that can be held, before the piece-edge rule):
+
+1. Anchors: cx in {x_i - r_i + W/2 (left edge on patch i), x_i + r_i - W/2 (right edge on i),
+   x_i (centred on i)}, likewise cy. The set held at any position is contained in the set held
+   at the left/bottom anchor of its leftmost/lowest member, so the anchors meet every maximal
+   set; the other anchors add smaller sets that may survive the edge rule.
+2. The held sets at all anchor pairs are deduplicated (bit sets); for each distinct set S the
+   position is chosen in S's feasible box (cx in [max_S(x + r) - W/2, min_S(x - r) + W/2], same
+   for y): of a 5 x 5 grid over the box, the positions whose frame ring touches the fewest
+   other patches come first, then those nearest the box centre; the first allowed position is
+   kept (and may hold more than S). A set with no allowed position is dropped.
+3. A patch that no kept placement holds gets a search of its own: a 2 mm grid over every
+   position that holds it, for every hoop and orientation; the allowed position holding the
+   most patches is added. If there is none the patch cannot be hooped: ``InvalidInputError``.
+
+Each placement also counts the other patches of its piece that its frame ring touches (the
+disc meets the outer rectangle but is not inside the field): the overlap used as tie-breaker.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.fabrication.grouping import bitsets
+from stitchswitch.layout.embroidery.hoop_spec import Hoop
+
+TOL_MM = 1e-9
+
+
+@dataclass(frozen=True)
+class Candidates:
+    """Placements as parallel arrays; ``holds`` is (m, n) over the patches of the problem."""
+    hoop_index: np.ndarray      # (m,) index into ``hoops``
+    orientation_deg: np.ndarray  # (m,) 0 or 90
+    centre_mm: np.ndarray       # (m, 2) field centre on the stretched piece
+    piece_index: np.ndarray     # (m,)
+    holds: np.ndarray           # (m, n) bool
+    overlap: np.ndarray         # (m,) patches of the piece under the frame ring, not held
+    hoops: tuple[Hoop, ...]
+
+    def __len__(self) -> int:
+        return len(self.hoop_index)
+
+
+def _held(cx, cy, x, y, r, w, h):
+    """(len(cx), n) bool: placements at (cx, cy) hold discs (x, y, r)."""
+    return ((np.abs(x[None, :] - cx[:, None]) <= w / 2 - r[None, :] + TOL_MM)
+            & (np.abs(y[None, :] - cy[:, None]) <= h / 2 - r[None, :] + TOL_MM))
+
+
+def _allowed(piece, cx, cy, ow, oh) -> np.ndarray:
+    boxes = shapely.box(cx - ow / 2, cy - oh / 2, cx + ow / 2, cy + oh / 2)
+    return np.asarray(shapely.contains(piece, boxes), dtype=bool)
+
+
+def ring_overlap(cx, cy, fw, fh, frame, x, y, r) -> np.ndarray:
+    """(len(cx), n) bool: disc i meets the frame ring of width ``frame`` around a field
+    fw x fh centred at (cx, cy): it meets the outer rectangle and is not inside the field."""
+    dx = np.abs(x[None, :] - cx[:, None])
+    dy = np.abs(y[None, :] - cy[:, None])
+    ow, oh = fw / 2 + frame, fh / 2 + frame
+    ex, ey = np.maximum(dx - ow, 0.0), np.maximum(dy - oh, 0.0)
+    meets_outer = ex * ex + ey * ey < (r[None, :] - TOL_MM) ** 2
+    inside_field = (dx <= fw / 2 - r[None, :] + TOL_MM) & (dy <= fh / 2 - r[None, :] + TOL_MM)
+    return meets_outer & ~inside_field & (frame > 0)
+
+
+def _variants(hoops):
+    for k, hoop in enumerate(hoops):
+        for o in hoop.orientations:
+            yield k, hoop, o
+
+
+def _choose_positions(members, x, y, r, hoop, o, piece):
+    """For each row of ``members`` (bool (s, n)): an allowed position in its feasible box, or
+    NaN. Tries a 5 x 5 grid over the box, fewest frame-ring contacts first, then nearest the
+    box centre."""
+    w, h = hoop.usable_mm(o)
+    fw, fh = hoop.field_mm(o)
+    ow, oh = hoop.outer_mm(o)
+    big = np.where(members, 1.0, np.nan)
+    lo_x = np.nanmax(big * (x + r), axis=1) - w / 2
+    hi_x = np.nanmin(big * (x - r), axis=1) + w / 2
+    lo_y = np.nanmax(big * (y + r), axis=1) - h / 2
+    hi_y = np.nanmin(big * (y - r), axis=1) + h / 2
+    t = np.linspace(0.0, 1.0, 5)
+    a, b = (g.ravel() for g in np.meshgrid(t, t))
+    cx = lo_x[:, None] + a[None, :] * (hi_x - lo_x)[:, None]          # (s, 25)
+    cy = lo_y[:, None] + b[None, :] * (hi_y - lo_y)[:, None]
+    contacts = np.empty(cx.shape, dtype=int)
+    for j in range(cx.shape[1]):
+        held = _held(cx[:, j], cy[:, j], x, y, r, w, h)
+        ring = ring_overlap(cx[:, j], cy[:, j], fw, fh, hoop.frame_width_mm, x, y, r)
+        contacts[:, j] = (ring & ~held).sum(axis=1)
+    centred = (a - 0.5) ** 2 + (b - 0.5) ** 2
+    rank = np.argsort(contacts + 0.1 * centred[None, :], axis=1, kind="stable")
+    out = np.full((len(members), 2), np.nan)
+    todo = np.arange(len(members))
+    for step in range(cx.shape[1]):
+        if not len(todo):
+            break
+        j = rank[todo, step]
+        px, py = cx[todo, j], cy[todo, j]
+        ok = _allowed(piece, px, py, ow, oh)
+        out[todo[ok]] = np.column_stack([px[ok], py[ok]])
+        todo = todo[~ok]
+    return out
+
+
+def _rescue(i, x, y, r, hoops, piece, step_mm=2.0):
+    """The allowed placement holding patch i and the most others (None if there is none)."""
+    best = None
+    for k, hoop, o in _variants(hoops):
+        w, h = hoop.usable_mm(o)
+        ow, oh = hoop.outer_mm(o)
+        if 2 * r[i] > min(w, h) + TOL_MM:
+            continue
+        sx, sy = w / 2 - r[i], h / 2 - r[i]
+        gx = np.linspace(x[i] - sx, x[i] + sx, max(2, int(np.ceil(2 * sx / step_mm)) + 1))
+        gy = np.linspace(y[i] - sy, y[i] + sy, max(2, int(np.ceil(2 * sy / step_mm)) + 1))
+        cx, cy = (a.ravel() for a in np.meshgrid(gx, gy))
+        ok = _allowed(piece, cx, cy, ow, oh)
+        if not ok.any():
+            continue
+        cx, cy = cx[ok], cy[ok]
+        held = _held(cx, cy, x, y, r, w, h)
+        j = int(np.argmax(held.sum(axis=1)))
+        score = (int(held[j].sum()), -hoop.area_mm2)
+        if best is None or score > best[0]:
+            best = (score, k, o, (float(cx[j]), float(cy[j])))
+    return None if best is None else best[1:]
+
+
+def generate(feet, pieces, hoops: tuple[Hoop, ...]) -> Candidates:
+    """Candidate placements for footprints ``feet`` on stretched ``pieces`` (see module doc)."""
+    n = len(feet)
+    names = [p.name for p in pieces]
+    piece_of = np.array([names.index(f.piece) for f in feet])
+    x = np.array([f.centre_mm[0] for f in feet], dtype=float)
+    y = np.array([f.centre_mm[1] for f in feet], dtype=float)
+    r = np.array([f.radius_mm for f in feet], dtype=float)
+    _check_sizes(feet, r, hoops)
+    rows = []      # (hoop index, orientation, cx, cy, piece index)
+    for pi, piece in enumerate(pieces):
+        idx = np.flatnonzero(piece_of == pi)
+        if not len(idx):
+            continue
+        poly = shapely.Polygon(piece.outline_mm)
+        if not poly.is_valid:
+            poly = poly.buffer(0)
+        shapely.prepare(poly)
+        xs, ys, rs = x[idx], y[idx], r[idx]
+        for k, hoop, o in _variants(hoops):
+            w, h = hoop.usable_mm(o)
+            ow, oh = hoop.outer_mm(o)
+            fits = 2 * rs <= min(w, h) + TOL_MM
+            if not fits.any():
+                continue
+            ax = np.unique(np.round(np.concatenate([xs - rs + w / 2, xs + rs - w / 2, xs])[
+                np.tile(fits, 3)], 9))
+            ay = np.unique(np.round(np.concatenate([ys - rs + h / 2, ys + rs - h / 2, ys])[
+                np.tile(fits, 3)], 9))
+            bx = bitsets.pack(_held(ax, np.zeros_like(ax), xs, np.zeros_like(ys), rs, w, np.inf))
+            by = bitsets.pack(_held(np.zeros_like(ay), ay, np.zeros_like(xs), ys, rs, np.inf, h))
+            sets = (bx[:, None, :] & by[None, :, :]).reshape(-1, bx.shape[1])
+            sets = np.unique(sets[np.any(sets != 0, axis=1)], axis=0)
+            members = bitsets.unpack(sets, len(idx))
+            pos = _choose_positions(members, xs, ys, rs, hoop, o, poly)
+            for cx, cy in pos[np.isfinite(pos[:, 0])]:
+                rows.append((k, o, float(cx), float(cy), pi))
+        held_any = _holds_of(rows, x, y, r, hoops, piece_of, n).any(axis=0) if rows else \
+            np.zeros(n, dtype=bool)
+        for i in idx[~held_any[idx]]:
+            got = _rescue(i, x, y, r, hoops, poly)
+            if got is None:
+                raise InvalidInputError(
+                    f"patch {feet[i].id!r} cannot be hooped: it is too close to the edge of piece "
+                    f"{piece.name!r} for any hoop field plus its frame ring to lie on the fabric "
+                    "(the frame must clamp fabric all round; see docs/fabrication.md)")
+            k, o, (cx, cy) = got
+            rows.append((k, o, cx, cy, pi))
+            held_any = _holds_of(rows, x, y, r, hoops, piece_of, n).any(axis=0)
+    return _assemble(rows, x, y, r, hoops, piece_of, n)
+
+
+def _check_sizes(feet, r, hoops) -> None:
+    best = max(min(h.usable_mm()) for h in hoops)
+    for f, ri in zip(feet, r):
+        if 2 * ri > best + TOL_MM:
+            big = max(hoops, key=lambda h: (min(h.usable_mm()), h.area_mm2))
+            uw, uh = big.usable_mm()
+            raise InvalidInputError(
+                f"patch {f.id!r}: its {2 * ri:g} mm footprint on the stretched fabric fits no "
+                f"hoop; the roomiest is {big} with {uw:g} x {uh:g} mm inside its "
+                f"{big.margin_mm:g} mm margin")
+
+
+def _holds_of(rows, x, y, r, hoops, piece_of, n):
+    out = np.zeros((len(rows), n), dtype=bool)
+    for j, (k, o, cx, cy, pi) in enumerate(rows):
+        w, h = hoops[k].usable_mm(o)
+        out[j] = _held(np.array([cx]), np.array([cy]), x, y, r, w, h)[0] & (piece_of == pi)
+    return out
+
+
+def _assemble(rows, x, y, r, hoops, piece_of, n) -> Candidates:
+    holds = np.zeros((len(rows), n), dtype=bool)
+    overlap = np.zeros(len(rows), dtype=int)
+    for j, (k, o, cx, cy, pi) in enumerate(rows):
+        hoop = hoops[k]
+        w, h = hoop.usable_mm(o)
+        fw, fh = hoop.field_mm(o)
+        same = piece_of == pi
+        c1, c2 = np.array([cx]), np.array([cy])
+        holds[j] = _held(c1, c2, x, y, r, w, h)[0] & same
+        overlap[j] = int((ring_overlap(c1, c2, fw, fh, hoop.frame_width_mm, x, y, r)[0]
+                          & same & ~holds[j]).sum())
+    # one row per distinct (hoop, orientation, piece, held set): the first found is kept
+    key = np.column_stack([np.array([rw[0] for rw in rows]), np.array([rw[1] for rw in rows]),
+                           np.array([rw[4] for rw in rows]), bitsets.pack(holds).view(np.int64)]) \
+        if rows else np.zeros((0, 4), dtype=np.int64)
+    _, first = np.unique(key, axis=0, return_index=True)
+    keep = np.sort(first)
+    return Candidates(np.array([rows[j][0] for j in keep], dtype=int),
+                      np.array([rows[j][1] for j in keep], dtype=int),
+                      np.array([[rows[j][2], rows[j][3]] for j in keep],
+                               dtype=float).reshape(-1, 2),
+                      np.array([rows[j][4] for j in keep], dtype=int),
+                      holds[keep], overlap[keep], tuple(hoops))

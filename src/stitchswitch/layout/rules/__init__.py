@@ -1,2 +1,0 @@
-"""One module per rule of the constraint check (``layout.constraints``). Each has
-``check(design, limits, eta) -> list[Violation]``; ``eta`` is the material's pre-stretch."""

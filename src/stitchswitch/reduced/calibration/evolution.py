@@ -1,0 +1,181 @@
+"""Calibration of the material by differential evolution (paper, section 4).
+
+The objective is the paper's: the mean squared error (mm^2) over the five keypoints
+(h, r_a, z_a, r_b, z_b) of the training rows, each predicted by a certified solve.
+
+Identifiability. The energy is homogeneous of degree one in the seven coefficients (the slack
+regularization is a ratio to k_r), so scaling all of them by one factor leaves every equilibrium
+unchanged: **the overall scale is not identifiable from shapes**. The fit therefore holds
+``SCALE_PARAM`` (k_theta_fab) at its starting value and fits the other six relative to it.
+Weaker correlations are measured, not assumed: at the optimum, the Jacobian of the training
+keypoints with respect to the log-parameters gives singular values, and directions whose
+singular value is below ``WEAK_RATIO`` times the largest are reported as poorly identified.
+
+Search space (documented bounds, ``BOUNDS``): log10 of w_b_emb, w_b_fab, k_r_emb, k_r_fab,
+k_theta_emb, and w_log on a linear scale (it may be 0).
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.reduced.model.params import Material, Patch
+
+#: The seven calibrated coefficients (paper).
+PARAMS = ("w_b_emb", "w_b_fab", "k_r_emb", "k_r_fab", "k_theta_emb", "k_theta_fab", "w_log")
+#: Held fixed: the overall scale of the energy is not identifiable.
+SCALE_PARAM = "k_theta_fab"
+#: Bounds of the free parameters: (low, high, scale) with scale "log" (log10) or "linear".
+BOUNDS = {
+    "w_b_emb": (1.0, 100.0, "log"),
+    "w_b_fab": (0.1, 20.0, "log"),
+    "k_r_emb": (0.1, 10.0, "log"),
+    "k_r_fab": (0.05, 5.0, "log"),
+    "k_theta_emb": (0.1, 10.0, "log"),
+    "w_log": (0.0, 0.5, "linear"),
+}
+WEAK_RATIO = 1e-2
+#: Penalty (mm^2) added per training design whose solve is not certified.
+UNCONVERGED_PENALTY = 100.0
+
+
+def _to_x(values: dict, free) -> np.ndarray:
+    return np.array([math.log10(values[n]) if BOUNDS[n][2] == "log" else values[n] for n in free])
+
+
+def _from_x(x, free, base: Material) -> Material:
+    changes = {n: (10.0 ** v if BOUNDS[n][2] == "log" else float(v)) for n, v in zip(free, x)}
+    return base.replace(**changes)
+
+
+def _search_bounds(free):
+    return [((math.log10(BOUNDS[n][0]), math.log10(BOUNDS[n][1])) if BOUNDS[n][2] == "log"
+             else BOUNDS[n][:2]) for n in free]
+
+
+def predict_keypoints(material: Material, designs) -> tuple[np.ndarray, int]:
+    """(n, 5) keypoints of ``designs`` [(d, p), ...] and how many solves were not certified."""
+    from stitchswitch.reduced.solvers.solve import solve
+
+    out, bad = [], 0
+    for d, p in designs:
+        sol = solve(Patch(d, p), material)
+        kp = sol.keypoints
+        out.append((kp.h_mm, kp.r_a_mm, kp.z_a_mm, kp.r_b_mm, kp.z_b_mm))
+        bad += not (sol.converged and sol.second_order)
+    return np.array(out), bad
+
+
+@dataclass(frozen=True)
+class Objective:
+    """Picklable objective: x (search space) -> MSE over the training keypoints (mm^2)."""
+
+    base: Material
+    free: tuple
+    designs: tuple
+    measured: np.ndarray
+
+    def __call__(self, x) -> float:
+        try:
+            material = _from_x(x, self.free, self.base)
+        except InvalidInputError:
+            return 1e6
+        pred, bad = predict_keypoints(material, self.designs)
+        return float(np.mean((pred - self.measured) ** 2) + UNCONVERGED_PENALTY * bad)
+
+
+@dataclass(frozen=True)
+class CalibrationResult:
+    material: Material
+    mse_mm2: float
+    free: tuple
+    fixed: dict
+    generations: int
+    evaluations: int
+    seconds: float
+    message: str
+    identifiability: dict = field(default_factory=dict)
+    interrupted: bool = False
+
+
+def identifiability(objective: Objective, x: np.ndarray, step: float = 1e-3) -> dict:
+    """Singular values of d(keypoints)/d(log-parameters) at ``x`` and the weak directions."""
+    base, _ = predict_keypoints(_from_x(x, objective.free, objective.base), objective.designs)
+    cols = []
+    for k in range(x.size):
+        xp = x.copy()
+        xp[k] += step
+        pred, _ = predict_keypoints(_from_x(xp, objective.free, objective.base), objective.designs)
+        cols.append(((pred - base) / step).ravel())
+    J = np.array(cols).T
+    _, s, vt = np.linalg.svd(J, full_matrices=False)
+    weak = []
+    for sv, v in zip(s, vt):
+        if sv < WEAK_RATIO * s[0]:
+            comps = sorted(zip(objective.free, v), key=lambda t: -abs(t[1]))
+            weak.append({"singular_value": float(sv),
+                         "direction": {n: round(float(c), 3) for n, c in comps if abs(c) > 0.1}})
+    return {
+        "not_identifiable": f"the overall scale of the energy: {SCALE_PARAM} is held fixed "
+                            "and the other coefficients are fitted relative to it",
+        "parameters": list(objective.free),
+        "singular_values": [float(v) for v in s],
+        "condition_number": float(s[0] / s[-1]) if s[-1] > 0 else math.inf,
+        "weak_directions": weak,
+    }
+
+
+def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize: int = 10,
+              seed: int = 0, executor=None, free=None, tol: float = 1e-6, x0=None,
+              callback=None, check_identifiability: bool = True) -> CalibrationResult:
+    """Differential evolution (scipy) over the free parameters; see the module docstring.
+
+    ``designs``: [(d_mm, fill)] of the training rows; ``measured``: (n, 5) keypoints.
+    ``executor``: a map-like (``stitchswitch.executor``) for parallel evaluation.
+    ``x0``: a starting point in the search space (resume from a checkpoint).
+    ``callback(generation, best_material, best_mse)`` after every generation; it may raise
+    KeyboardInterrupt, which ends the search with the best point so far."""
+    from scipy.optimize import differential_evolution
+
+    free = tuple(free or [n for n in PARAMS if n != SCALE_PARAM])
+    unknown = [n for n in free if n not in BOUNDS]
+    if unknown:
+        raise InvalidInputError(f"free parameters: {', '.join(unknown)} cannot be fitted "
+                                f"(choose from {', '.join(BOUNDS)})")
+    measured = np.asarray(measured, dtype=float)
+    if measured.shape != (len(designs), 5) or len(designs) == 0:
+        raise InvalidInputError(f"measured: expected ({len(designs)}, 5) keypoints, got {measured.shape}")
+    objective = Objective(start, free, tuple((float(d), float(p)) for d, p in designs), measured)
+    bounds = _search_bounds(free)
+    x_start = _to_x(start.as_dict(), free) if x0 is None else np.asarray(x0, dtype=float)
+    x_start = np.clip(x_start, [b[0] for b in bounds], [b[1] for b in bounds])
+    state = {"gen": 0, "best_x": x_start, "best_f": math.inf, "nfev": 0}
+    t0 = time.perf_counter()
+
+    def on_generation(intermediate_result):
+        state["gen"] += 1
+        state["best_x"], state["best_f"] = np.array(intermediate_result.x), float(intermediate_result.fun)
+        if callback:
+            callback(state["gen"], _from_x(state["best_x"], free, start), state["best_f"])
+
+    interrupted = False
+    try:
+        res = differential_evolution(
+            objective, bounds, maxiter=maxiter, popsize=popsize, seed=seed, tol=tol,
+            x0=x_start, workers=executor if executor is not None else 1,
+            updating="deferred" if executor is not None else "immediate",
+            polish=False, init="latinhypercube", callback=on_generation)
+        best_x, best_f, message, nfev = res.x, float(res.fun), str(res.message), int(res.nfev)
+    except KeyboardInterrupt:
+        interrupted = True
+        best_x, best_f, message, nfev = state["best_x"], state["best_f"], "interrupted", -1
+    seconds = time.perf_counter() - t0
+    material = _from_x(best_x, free, start)
+    ident = identifiability(objective, np.asarray(best_x)) if check_identifiability and not interrupted else {}
+    fixed = {n: getattr(start, n) for n in PARAMS if n not in free}
+    return CalibrationResult(material, best_f, free, fixed, state["gen"], nfev, seconds, message,
+                             ident, interrupted)

@@ -1,0 +1,149 @@
+"""Typed, frozen, validated parameter objects of the reduced model.
+
+``Material`` holds the seven calibrated coefficients of the paper (Eqs. 3-5), the hardening
+limit, the discretization constants and the slack regularization. The coefficients are
+dimensionless: the energy is written with lengths in units of the node spacing dR (see
+``docs/model.md``); the bending weights are those at the spacing ``dr_max_mm`` and the
+hardening limit ``gamma_mm`` is a length, both converted to the design's spacing by
+``discretization.make_grid``.
+
+``Patch`` is one design: its diameter on the pre-stretched fabric (mm) and its fill fraction.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+
+from stitchswitch.errors import InvalidInputError
+
+#: The solvers of ``reduced.solvers.solve`` (here, so that the CLI can list them without loading them).
+SOLVERS = ("newton", "adam")
+
+#: Supported patch diameters, measured on the pre-stretched fabric (mm).
+DIAMETER_RANGE_MM = (10.0, 150.0)
+
+
+def _finite(name: str, value: float) -> float:
+    if isinstance(value, bool):
+        raise InvalidInputError(f"{name}: {value!r} is not a number")
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{name}: {value!r} is not a number") from None
+    if not math.isfinite(v):
+        raise InvalidInputError(f"{name}: {value!r} is not a finite number")
+    return v
+
+
+def _integer(name: str, value) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) and not (
+            isinstance(value, float) and value.is_integer()):
+        raise InvalidInputError(f"{name}: {value!r} is not an integer")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class Patch:
+    """One circular patch: ``diameter_mm`` on the pre-stretched fabric, ``fill`` in (0, 1]."""
+
+    diameter_mm: float
+    fill: float
+
+    def __post_init__(self) -> None:
+        d = _finite("diameter_mm", self.diameter_mm)
+        p = _finite("fill", self.fill)
+        lo, hi = DIAMETER_RANGE_MM
+        if d <= 0:
+            raise InvalidInputError(f"diameter_mm: {self.diameter_mm!r} must be > 0")
+        if not lo <= d <= hi:
+            raise InvalidInputError(
+                f"diameter_mm: {self.diameter_mm!r} is outside the supported range [{lo:g}, {hi:g}] mm")
+        if not 0.0 < p <= 1.0:
+            raise InvalidInputError(f"fill: {self.fill!r} is outside (0, 1]")
+        object.__setattr__(self, "diameter_mm", d)
+        object.__setattr__(self, "fill", p)
+
+
+@dataclass(frozen=True)
+class Material:
+    """Material and discretization of the reduced model.
+
+    Calibrated coefficients (paper, section 4, "Calibration procedure"), all dimensionless:
+    ``w_b_emb, w_b_fab`` bending weights (Eq. 4), ``k_r_emb, k_r_fab`` radial and
+    ``k_theta_emb, k_theta_fab`` circumferential membrane stiffnesses (Eq. 3), ``w_log`` the
+    weight of the hardening term (Eq. 5, with the sign corrected, see ``terms/hardening.py``).
+
+    ``gamma_mm``: limit of the circumferential strain (Eq. 2, a length), where the fabric
+    hardens. ``eta``: pre-stretch in the hoop. ``n_nodes``: N. ``dr_max_mm``: largest node
+    spacing. ``domain_max_rb``: the fabric domain (N - 1) dR extends at most this many patch
+    radii R_b; a small patch gets a finer spacing instead of a larger domain, i.e.
+    N_in >= (N - 1) / domain_max_rb (``discretization.n_inside``; docs/design-map.md).
+    ``compression_ratio``: the slack regularization (``terms/compression.py``), the
+    ratio of compressive to tensile radial stiffness near the rest length; 0 is the printed
+    model, which has no minimizer for most designs (``docs/model.md``).
+    """
+
+    w_b_emb: float
+    w_b_fab: float
+    k_r_emb: float
+    k_r_fab: float
+    k_theta_emb: float
+    k_theta_fab: float
+    w_log: float
+    gamma_mm: float = 3.0
+    eta: float = 1.7
+    n_nodes: int = 300
+    dr_max_mm: float = 0.5
+    compression_ratio: float = 1e-2
+    domain_max_rb: float = 7.5
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            if f.name == "n_nodes":
+                continue
+            object.__setattr__(self, f.name, _finite(f.name, getattr(self, f.name)))
+        for name in ("w_b_emb", "w_b_fab", "k_r_emb", "k_r_fab", "k_theta_emb", "k_theta_fab"):
+            if getattr(self, name) <= 0:
+                raise InvalidInputError(f"{name}: {getattr(self, name)!r} must be > 0")
+        if self.w_log < 0:
+            raise InvalidInputError(f"w_log: {self.w_log!r} must be >= 0")
+        if self.gamma_mm <= 0:
+            raise InvalidInputError(f"gamma_mm: {self.gamma_mm!r} must be > 0")
+        if not 1.0 < self.eta <= 3.0:
+            raise InvalidInputError(f"eta: {self.eta!r} is outside (1, 3]")
+        if self.dr_max_mm <= 0:
+            raise InvalidInputError(f"dr_max_mm: {self.dr_max_mm!r} must be > 0")
+        if not 0.0 < self.compression_ratio < 1.0:
+            raise InvalidInputError(f"compression_ratio: {self.compression_ratio!r} is outside (0, 1)")
+        n = _integer("n_nodes", self.n_nodes)
+        if not 20 <= n <= 20000:
+            raise InvalidInputError(f"n_nodes: {n!r} is outside [20, 20000]")
+        object.__setattr__(self, "n_nodes", n)
+        if not 2.0 <= self.domain_max_rb <= 1000.0:
+            raise InvalidInputError(f"domain_max_rb: {self.domain_max_rb!r} is outside [2, 1000]")
+
+    def replace(self, **changes) -> "Material":
+        """A copy with some fields changed (validated again)."""
+        values = {f.name: getattr(self, f.name) for f in fields(self)}
+        unknown = set(changes) - set(values)
+        if unknown:
+            raise InvalidInputError(f"unknown material field(s): {', '.join(sorted(unknown))}")
+        values.update(changes)
+        return Material(**values)
+
+    def as_dict(self) -> dict:
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+#: Default material. NOT fitted to fabricated samples: chosen by hand so that the paper's
+#: qualitative findings appear (near-flat small sparse patches, h growing with d, a flatter
+#: "mushroom" profile at high fill, h of the paper's magnitude). See docs/model.md.
+DEFAULT_MATERIAL = Material(
+    w_b_emb=10.0,
+    w_b_fab=2.0,
+    k_r_emb=1.0,
+    k_r_fab=0.5,
+    k_theta_emb=1.0,
+    k_theta_fab=0.5,
+    w_log=0.05,
+)

@@ -1,0 +1,77 @@
+"""Hardening of the knit near its stretch limit (Eq. 5), with the sign corrected.
+
+As printed, f(e) = (e - g) log((g - e)/g) - e has f'' = -1/(g - e) < 0: with w_log > 0 it is
+concave and rewards stretching. The hardening the paper describes is its negative,
+
+    h(e) = (g - e) log(1 - e/g) + e,   h(0) = h'(0) = 0,   h'(e) = -log(1 - e/g),
+    h''(e) = 1 / (g - e) > 0,           h(e) ~ e^2 / (2 g) for small e,
+
+applied to the circumferential strain e = eps_theta of Eq. 2 (dR units, like g = gamma_mm / dR):
+
+    E_log = (w_log / N) sum_i h(eps_i).
+
+h(g) = g is finite, so h is no barrier, and log(1 - e/g) is undefined for e >= g. Past
+e* = (1 - CUTOFF) g we continue h by its second-order Taylor polynomial at e*, which is C2
+and convex: the stiffness stays at h''(e*) = 1 / (CUTOFF g) for every larger strain.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from stitchswitch.reduced.model.terms.segment import NO_HESSIAN
+
+STENCIL = 1
+OFFSET = 1
+
+#: Fraction of gamma below the limit where the quadratic continuation takes over.
+CUTOFF = 0.01
+
+
+@njit(cache=True)
+def h_scalar(e, gamma):
+    """h(e), h'(e), h''(e) of the corrected hardening function, C2-continued past the cutoff."""
+    es = (1.0 - CUTOFF) * gamma
+    ec = min(e, es)
+    lg = math.log1p(-ec / gamma)
+    v, d1, d2 = (gamma - ec) * lg + ec, -lg, 1.0 / (gamma - ec)
+    if e > es:
+        dx = e - es
+        v, d1 = v + d1 * dx + 0.5 * d2 * dx * dx, d1 + d2 * dx
+    return v, d1, d2
+
+
+def h(e, gamma: float):
+    """Vectorized ``h_scalar``: arrays h, h', h''."""
+    return np.vectorize(h_scalar, otypes=[float, float, float])(e, gamma)
+
+
+@njit(cache=True)
+def _kernel(r, rest, gamma, a, grad, hb, want_g, want_h):
+    E = 0.0
+    if a == 0.0:
+        return E
+    for i in range(rest.size):
+        v, d1, d2 = h_scalar(r[i + 1] - rest[i], gamma)
+        E += a * v
+        if want_g:
+            grad[2 * i + 2] += a * d1
+            if want_h:
+                hb[0, 2 * i + 2] += a * d2
+    return E
+
+
+def coefficients(grid):
+    """(rest ring radius lambda R_{i+1} per node i+1, gamma, w_log / N)."""
+    return grid.lam * grid.R[1:], grid.gamma, grid.w_log / grid.n_nodes
+
+
+def energy(r, z, coef) -> float:
+    return _kernel(r, *coef, np.empty(0), NO_HESSIAN, False, False)
+
+
+def accumulate(r, z, coef, grad, hb) -> float:
+    """Add the gradient (and the Hessian if ``hb`` has columns) into grad / hb; return E."""
+    return _kernel(r, *coef, grad, hb, True, hb.shape[1] > 0)

@@ -1,0 +1,45 @@
+"""Radial membrane term (Eq. 1 and the first part of Eq. 3), tension only.
+
+    E_r = (1/N) sum_i k_r^(i) max(l_i - lambda_i, 0)^2 lambda_i R_{i+1},
+
+l_i the deformed length of segment i and lambda_i its rest length, both in dR units.
+A slack segment (l < lambda) costs nothing here: the regularization in ``compression.py``
+is what keeps it from collapsing.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from stitchswitch.reduced.model.terms.segment import NO_HESSIAN, add_segment, segment
+
+STENCIL = 2
+OFFSET = 0
+
+
+def coefficients(grid):
+    """(lambda, weight k_r lambda R_{i+1} / N) per segment."""
+    return grid.lam, grid.k_r * grid.lam * grid.R[1:] / grid.n_nodes
+
+
+@njit(cache=True)
+def _kernel(r, z, lam, w, grad, hb, want_g, want_h):
+    E = 0.0
+    for i in range(r.size - 1):
+        vr, vz, l = segment(r, z, i)
+        s = l - lam[i]
+        if s <= 0.0:
+            continue
+        E += w[i] * s * s
+        if want_g:
+            add_segment(grad, hb, i, 2.0 * w[i] * s, 2.0 * w[i], vr, vz, l, want_h)
+    return E
+
+
+def energy(r, z, coef) -> float:
+    return _kernel(r, z, *coef, np.empty(0), NO_HESSIAN, False, False)
+
+
+def accumulate(r, z, coef, grad, hb) -> float:
+    """Add the gradient (and the Hessian if ``hb`` has columns) into grad / hb; return E."""
+    return _kernel(r, z, *coef, grad, hb, True, hb.shape[1] > 0)

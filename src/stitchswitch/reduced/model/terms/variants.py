@@ -1,0 +1,44 @@
+"""Discretization variants of single terms, used to measure where the reduced model's error
+against the shell reference comes from (``fem_reference.check``). Not used by default.
+
+``hoop_node_average`` and ``hardening_node_average``: the circumferential strain of node i+1
+with the rest metric and stiffness averaged over its two segments, instead of the paper's
+"segment i's values at node i+1" (which puts the boundary node's ring fully inside the patch).
+"""
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from stitchswitch.reduced.model.terms import (bending, circumferential, compression, hardening,
+                                        radial)
+
+
+def _node_average(a: np.ndarray) -> np.ndarray:
+    out = np.array(a, dtype=float)
+    out[:-1] = 0.5 * (a[:-1] + a[1:])
+    return out
+
+
+def _hoop_coefficients(grid):
+    lam, k = _node_average(grid.lam), _node_average(grid.k_theta)
+    rest = lam * grid.R[1:]
+    return rest, k / (rest * grid.n_nodes)
+
+
+def _hardening_coefficients(grid):
+    return _node_average(grid.lam) * grid.R[1:], grid.gamma, grid.w_log / grid.n_nodes
+
+
+def _variant(module, coefficients):
+    return SimpleNamespace(__name__=module.__name__ + "_node_average", STENCIL=module.STENCIL,
+                           OFFSET=module.OFFSET, coefficients=coefficients,
+                           energy=module.energy, accumulate=module.accumulate)
+
+
+hoop_node_average = _variant(circumferential, _hoop_coefficients)
+hardening_node_average = _variant(hardening, _hardening_coefficients)
+
+#: The full term set with the node-averaged hoop quadrature.
+HOOP_NODE_AVERAGE_TERMS = (radial, compression, hoop_node_average, hardening_node_average, bending)

@@ -1,0 +1,11 @@
+"""Solvers of the reduced model: from a ``Patch`` and a ``Material`` to a certified equilibrium.
+
+* ``solve``: ``solve(patch, material) -> Solution``, the public entry point (also
+  ``stitchswitch.solve``).
+* ``newton``: the certified projected Newton method; ``banded``: its banded linear algebra;
+  ``constraints``: the bound constraints, projection and KKT residual.
+* ``continuation``: starting states (the released state, the release continuation).
+* ``adam``: the paper's projected Adam, kept as a baseline.
+
+Imports ``reduced.model`` only.
+"""

@@ -1,0 +1,13 @@
+"""Discrepancy discovery (docs/discovery.md): where the model and the data disagree, which
+missing effect explains it, and how much the gap shrinks once it is added.
+
+* ``workflow``: ``discover(data, material, DiscoveryConfig) -> Discovery``.
+* ``space``: the fitted parameters (``ModelSpec``); ``evaluate``: cached keypoints of many
+  (design, parameters) pairs; ``fit``: least-squares fits; ``cv``: cross-validation and the F test;
+  ``residuals``: is a residual pattern systematic; ``signature``: sensitivity signatures.
+* ``report``, ``figures``: the report (Markdown, HTML, JSON); ``synthetic``: SYNTHETIC datasets
+  with a hidden effect.
+* ``effects/``: the library of candidate effects.
+
+Imports ``reduced`` and ``validation.measured`` / ``metrics``.
+"""

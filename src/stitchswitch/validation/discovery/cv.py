@@ -1,0 +1,80 @@
+"""Held-out error and significance for model comparison.
+
+* ``fold_labels``: K folds over the distinct training designs (rows of one design stay
+  together), balanced, from a seeded permutation.
+* ``cross_validate``: for each fold, refit every parameter on the other folds by least squares
+  started at the full-data fit (its finite-difference Jacobian is cached, so the first step is
+  free) with at most ``max_nfev`` steps, and predict the held-out designs with cold solves. The
+  score is the mean squared error (mm^2) of those held-out predictions over the five keypoints.
+  Cross-validation is the complexity penalty: an extra parameter that only fits noise makes
+  the held-out predictions worse, not better.
+* ``f_test``: is the drop of the training residual sum of squares from adding m parameters
+  larger than the noise explains? F = ((RSS0 - RSS1) / m) / (RSS1 / (n - k1)), the noise
+  variance estimated from the larger model's residuals; p from the F(m, n - k1) distribution.
+* ``sign_flip_test``: one-sided randomization test that paired per-design differences have a
+  positive mean (random sign flips, seeded).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from stitchswitch.validation.discovery.fit import fit
+
+__all__ = ["fold_labels", "CrossValidation", "cross_validate", "f_test", "sign_flip_test"]
+
+
+def fold_labels(designs, k: int, seed: int) -> np.ndarray:
+    """Fold index (0..k-1) of every row; rows of the same design share a fold."""
+    keys = [(float(d), float(p)) for d, p in designs]
+    unique = sorted(set(keys))
+    k = max(2, min(int(k), len(unique)))
+    order = np.random.default_rng(seed).permutation(len(unique))
+    fold_of = {unique[j]: pos % k for pos, j in enumerate(order)}
+    return np.array([fold_of[key] for key in keys])
+
+
+@dataclass(frozen=True)
+class CrossValidation:
+    """Held-out predictions (n, 5) of every training row and their mean squared error."""
+
+    predictions: np.ndarray
+    row_loss: np.ndarray         # mean squared error of each row over the five keypoints
+    score_mm2: float
+    fold_parameters: tuple       # x of each fold's refit
+
+
+def cross_validate(spec, ev, designs, measured, x_full, labels, *, max_nfev: int = 3) -> CrossValidation:
+    designs = [tuple(map(float, d)) for d in designs]
+    measured = np.asarray(measured, dtype=float)
+    pred = np.empty_like(measured)
+    xs = []
+    for k in range(int(labels.max()) + 1):
+        test = labels == k
+        train_d = [d for d, t in zip(designs, test) if not t]
+        f = fit(spec, ev, train_d, measured[~test], x_full, max_nfev=max_nfev)
+        xs.append(f.x)
+        pred[test] = ev.one(spec, f.x, [d for d, t in zip(designs, test) if t])
+    loss = np.mean((pred - measured) ** 2, axis=1)
+    return CrossValidation(pred, loss, float(np.mean(loss)), tuple(xs))
+
+
+def f_test(rss0: float, rss1: float, n: int, k0: int, k1: int) -> tuple[float, float]:
+    """(F, p) of the nested comparison; p = 1 when the larger model does not fit better."""
+    from scipy.stats import f as f_dist
+
+    m, dof = k1 - k0, n - k1
+    if m <= 0 or dof <= 0 or rss1 <= 0 or rss0 <= rss1:
+        return 0.0, 1.0
+    F = ((rss0 - rss1) / m) / (rss1 / dof)
+    return float(F), float(f_dist.sf(F, m, dof))
+
+
+def sign_flip_test(diff, permutations: int = 10000, seed: int = 0) -> float:
+    """p-value of mean(diff) > 0 under random signs (add-one corrected)."""
+    diff = np.asarray(diff, dtype=float)
+    observed = diff.mean()
+    signs = np.random.default_rng(seed).choice((-1.0, 1.0), size=(permutations, diff.size))
+    null = (signs * diff).mean(axis=1)
+    return float((1 + np.count_nonzero(null >= observed)) / (permutations + 1))

@@ -1,0 +1,159 @@
+"""Fitting a model (the starting one, or it plus one effect) to training keypoints.
+
+Objective: the paper's, the mean squared error (mm^2) over h, r_a, z_a, r_b, z_b of the rows
+fitted (``reduced.calibration.evolution``). Method: a bounded trust-region least-squares solver
+(``scipy.optimize.least_squares``, method "trf") whose Jacobian is a forward finite difference
+through the cached ``Evaluator``, warm-started from the centre (steps
+``discovery_space.BASE_STEP`` / ``EFFECT_STEP``; a step that would leave the bounds is taken
+backwards). Local, so it needs a good start:
+
+* the starting model: optionally a short differential evolution over the free coefficients
+  (``reduced.calibration.evolution.calibrate``), then least squares;
+* with an effect (``fit_effect``): two starts, each refined by least squares, the better fit
+  kept (the misfit can have two basins, e.g. a small and a large natural curvature): a
+  one-dimensional scan of the effect's strength with the starting model's fitted
+  coefficients (``scan_values``: geometric steps from the probe value to the bound, each sign
+  for a signed parameter), and the linearized joint step (``linearized_start``: one
+  Gauss-Newton step in the coefficients and the strength together, from the starting model's
+  Jacobian and the effect's signature). If the refined fit is still worse than the starting
+  model, the effect at zero strength (exactly the starting model) is the result.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Fit", "fit", "jacobian", "scan_values", "scan_effect", "linearized_start",
+           "fit_effect"]
+
+
+@dataclass(frozen=True)
+class Fit:
+    """A fitted model: ``spec`` and its search vector ``x``; ``predictions`` (n, 5) on the
+    fitted designs; ``mse_mm2`` their mean squared error; ``uncertified`` solves among them."""
+
+    spec: object
+    x: np.ndarray
+    predictions: np.ndarray
+    mse_mm2: float
+    evaluations: int
+    uncertified: int
+    message: str
+
+    @property
+    def parameters(self) -> dict:
+        return self.spec.describe(self.x)
+
+
+def jacobian(spec, ev, designs, x, lo, hi):
+    """Forward-difference Jacobian (5 n, k) of the keypoints of ``designs`` at ``x``."""
+    steps = spec.steps()
+    xs, signed = [np.asarray(x, dtype=float)], []
+    for k, h in enumerate(steps):
+        xk = xs[0].copy()
+        h = h if xk[k] + h <= hi[k] else -h
+        xk[k] += h
+        xs.append(xk)
+        signed.append(h)
+    centre = ev.one(spec, xs[0], designs)
+    preds = ev.perturbed(spec, xs[0], xs[1:], designs)
+    return np.stack([(preds[k] - centre).ravel() / h for k, h in enumerate(signed)], axis=1)
+
+
+def fit(spec, ev, designs, measured, x0, *, max_nfev: int = 20) -> Fit:
+    """Least squares from ``x0`` (clipped into the bounds) with at most ``max_nfev`` steps."""
+    from scipy.optimize import least_squares
+
+    measured = np.asarray(measured, dtype=float)
+    lo, hi = spec.bounds()
+    x0 = np.clip(np.asarray(x0, dtype=float), lo, hi)
+    fun = lambda x: (ev.one(spec, x, designs) - measured).ravel()       # noqa: E731
+    jac = lambda x: jacobian(spec, ev, designs, x, lo, hi)            # noqa: E731
+    res = least_squares(fun, x0, jac=jac, bounds=(lo, hi), method="trf", max_nfev=max_nfev,
+                        x_scale=1.0, xtol=1e-5, ftol=1e-6, gtol=1e-8)
+    x = np.asarray(res.x, dtype=float)
+    # the best point evaluated is the result (trf may end on a rejected trial)
+    pred = ev.one(spec, x, designs)
+    mse = float(np.mean((pred - measured) ** 2))
+    p0 = ev.one(spec, x0, designs)
+    if float(np.mean((p0 - measured) ** 2)) < mse:
+        x, pred, mse = x0, p0, float(np.mean((p0 - measured) ** 2))
+    return Fit(spec, x, pred, mse, int(res.nfev), ev.n_uncertified(spec, x, designs),
+               str(res.message))
+
+
+def scan_values(spec, points: int = 5) -> list[tuple]:
+    """Effect values scanned before the fit: the first parameter at zero and at ``points``
+    geometric steps from its probe to its bound (both signs if signed); others at their probe."""
+    params = spec.effect_parameters
+    first = params[0]
+    mags = np.geomspace(first.probe, max(first.upper, -first.lower), points)
+    values = [0.0] + [m for m in mags if m <= first.upper]
+    if first.signed:
+        values += [-m for m in mags if -m >= first.lower]
+    rest = tuple(p.probe for p in params[1:])
+    return [(v,) + rest for v in values]
+
+
+def scan_effect(spec, ev, designs, measured, x_base, points: int = 5, J0=None):
+    """(best x, [(values, mse)]) of the strength scan from the coefficients of ``x_base``.
+
+    With the starting model's Jacobian ``J0`` every scanned strength also gets one Gauss-Newton
+    correction of the coefficients (a profile scan: the coefficients partly re-adapt to the
+    strength, which a large effect needs to be recognized at all); the better of the two
+    points counts."""
+    measured = np.asarray(measured, dtype=float)
+    xs = [spec.extend(x_base, v) for v in scan_values(spec, points)]
+    preds = ev.keypoints(spec, xs, designs)
+    k = len(spec.free)
+    if J0 is not None:
+        lo, hi = spec.bounds()
+        corrected = []
+        for x, p in zip(xs, preds):
+            dx = np.linalg.lstsq(J0, (measured - p).ravel(), rcond=None)[0]
+            xc = x.copy()
+            xc[:k] = np.clip(x[:k] + dx, lo[:k], hi[:k])
+            corrected.append(xc)
+        xs = xs + corrected
+        preds = preds + ev.keypoints(spec, corrected, designs)
+    mse = [float(np.mean((p - measured) ** 2)) for p in preds]
+    table = [(spec.decode(x)[1][spec.effect], m) for x, m in zip(xs, mse)]
+    nonzero = [j for j in range(len(xs)) if np.any(xs[j][k:] != 0)]
+    best = min(nonzero, key=lambda j: mse[j])
+    return xs[best], table
+
+
+def linearized_start(spec, x_base, J0, sig, residual) -> np.ndarray:
+    """One Gauss-Newton step from (x_base, strength 0) in the coefficients and the first effect
+    parameter together: J0 (5n, k) the starting model's Jacobian, ``sig`` (n, 5) the signature
+    per unit strength, ``residual`` (n, 5) measured - predicted. Clipped into the bounds."""
+    probe = spec.effect_parameters[0].probe
+    A = np.column_stack([J0, sig.ravel() * probe])
+    delta, *_ = np.linalg.lstsq(A, residual.ravel(), rcond=None)
+    k = J0.shape[1]
+    rest = [1.0] * (len(spec.effect_parameters) - 1)       # further parameters at their probe
+    x = np.concatenate([np.asarray(x_base, dtype=float)[:k] + delta[:k], [delta[k]], rest])
+    lo, hi = spec.bounds()
+    return np.clip(x, lo, hi)
+
+
+def fit_effect(spec, ev, designs, measured, base_fit, J0, sig, *, max_nfev: int = 20,
+               scan_points: int = 5) -> tuple[Fit, dict]:
+    """Fit the starting model plus ``spec``'s effect; see the module docstring. Returns the fit
+    and {"scan": [(values, mse)], "start": the start whose refinement won}."""
+    measured = np.asarray(measured, dtype=float)
+    x_scan, table = scan_effect(spec, ev, designs, measured, base_fit.x, scan_points, J0)
+    x_lin = linearized_start(spec, base_fit.x, J0, sig, measured - base_fit.predictions)
+    fits = {"linearized": fit(spec, ev, designs, measured, x_lin, max_nfev=max_nfev)}
+    if not np.allclose(x_scan, x_lin, atol=1e-3):
+        fits["scan"] = fit(spec, ev, designs, measured, x_scan, max_nfev=max_nfev)
+    start = min(fits, key=lambda k: (fits[k].mse_mm2, k))
+    f = fits[start]
+    if f.mse_mm2 > base_fit.mse_mm2:
+        x0 = spec.extend(base_fit.x, (0.0,) * len(spec.effect_parameters))
+        pred = ev.one(spec, x0, designs)
+        f = Fit(spec, x0, pred, float(np.mean((pred - measured) ** 2)), f.evaluations,
+                ev.n_uncertified(spec, x0, designs), "no improvement over the starting model")
+        start = "zero"
+    return f, {"scan": table, "start": start}

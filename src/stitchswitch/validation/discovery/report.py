@@ -1,0 +1,269 @@
+"""The discovery report: a short story in Markdown and HTML with PNG figures, and report.json.
+
+The directory follows ``validation.report``'s conventions (``stitchswitch.files.outdir``): it is built
+in a temporary directory next to the target and renamed into place as a whole (nothing is left
+behind on error); an existing target must be empty or a previous report of this command (its
+report.json says ``"generator": "stitchswitch discover"`` and it holds no other files), which is
+replaced. The HTML is self-contained (figures as data URIs). report.json holds no timestamps or
+timings: equal inputs give equal files.
+"""
+from __future__ import annotations
+
+import base64
+import html
+import json
+import os
+
+from stitchswitch import __version__
+from stitchswitch.files.outdir import check_outdir, previous_output, write_outdir
+from stitchswitch.reduced.model.material_io import material_hash
+from stitchswitch.validation.discovery.figures import FIGURES, all_figures
+from stitchswitch.validation.discovery.effects import get_effect
+from stitchswitch.validation.measured import QUANTITIES
+from stitchswitch.validation.report import _CSS, _jsonable, provenance_statement
+
+__all__ = ["GENERATOR", "REPORT_FILES", "METHOD", "report_dict", "check_discovery_dir",
+           "write_discovery_report", "report_json"]
+
+GENERATOR = "stitchswitch discover"
+REPORT_FILES = ("report.md", "report.html", "report.json") + FIGURES
+METHOD = {
+    "calibration": "least squares (scipy trust-region 'trf', forward finite-difference "
+                   "Jacobian) of the MSE over h, r_a, z_a, r_b, z_b of the training rows; "
+                   "k_theta_fab (overall scale) and w_log held fixed",
+    "residual_test": "per quantity, on all rows: leave-one-out cross-validated R^2 of a "
+                     "quadratic surface in (d, p) against predicting zero, p-value by "
+                     "randomization (permutations with sign flips); systematic if p < "
+                     "alpha / 5",
+    "ranking": "K-fold cross-validated MSE on the training rows after refitting all "
+               "coefficients and the effect's parameters (cross-validation is the complexity "
+               "penalty); the validation rows take no part",
+    "significance": "the best-ranked candidate is named only if it beats the starting model's "
+                    "cross-validated MSE and an F test of its training-RSS drop against the "
+                    "noise variance (estimated from its residuals) gives p < alpha / number of "
+                    "candidates",
+    "signature": "finite-difference change of the keypoints per unit strength at the "
+                 "calibrated starting model (zero to the probe value); correlated with the "
+                 "residuals after removing what recalibrating the coefficients can absorb",
+}
+
+
+def report_dict(disc, data, start, start_label: str = "default") -> dict:
+    """report.json: the discovery summary plus provenance and every row."""
+    rows = []
+    for i, r in enumerate(data.rows):
+        rows.append({"line": r.line, "sample_id": r.sample_id, "split": r.split,
+                     "d_mm": r.d_mm, "fill": r.fill,
+                     "measured": {q: float(disc.measured[i, k]) for k, q in enumerate(QUANTITIES)},
+                     "before": {q: float(disc.before[i, k]) for k, q in enumerate(QUANTITIES)},
+                     "after": {q: float(disc.after[i, k]) for k, q in enumerate(QUANTITIES)}})
+    s = disc.summary
+    return _jsonable({
+        "generator": GENERATOR, "version": __version__,
+        "missing_effect": s["missing_effect"], "significant": s["significant"],
+        "effect_parameters": s["effect_parameters"], "decision": s["decision"],
+        "ranking": s["ranking"], "before": s["before"], "after": s["after"],
+        "data": {"path": data.path, "source": data.source, "synthetic": data.synthetic,
+                 "provenance": provenance_statement(data), "sha256": data.sha256,
+                 "n_train": s["n_train"], "n_val": s["n_val"]},
+        "start_material": {"label": start_label, "sha256": material_hash(start),
+                           "values": start.as_dict()},
+        "starting_model": s["starting_model"],
+        "residuals_before": s["residuals_before"], "residuals_after": s["residuals_after"],
+        "significance_threshold": s["significance_threshold"],
+        "method": METHOD, "config": s["config"],
+        "rows": rows, "files": list(REPORT_FILES),
+    })
+
+
+def report_json(rep: dict) -> str:
+    return json.dumps(rep, indent=2, allow_nan=False) + "\n"
+
+
+def check_discovery_dir(outdir) -> bool:
+    """Raise ``InvalidInputError`` unless ``outdir`` can take a report; True if it holds a
+    previous discovery report that will be replaced."""
+    return check_outdir(outdir, previous=_PREVIOUS, what="report directory")
+
+
+_PREVIOUS = previous_output(REPORT_FILES, GENERATOR, noun="discovery report")
+
+
+# ----------------------------------------------------------------------------- the story
+
+def _f(v, n=2):
+    return "n/a" if v is None else f"{v:.{n}f}"
+
+
+def _story(rep: dict) -> dict:
+    """The report's sections as (title, paragraphs, table, figures) pieces shared by MD/HTML."""
+    s0 = rep["starting_model"]
+    res_b = rep["residuals_before"]
+    systematic = [q for q in QUANTITIES if res_b[q]["systematic"]]
+    where = (f"The residuals of {', '.join(systematic)} are systematic over the design space "
+             "(a smooth function of d and p predicts them on rows it has not seen)."
+             if systematic else "No quantity's residuals are distinguishable from noise by the "
+                                "residual test.")
+    calib = (f"The starting model ({s0['label']}) was calibrated on the {rep['data']['n_train']} "
+             f"training rows: training MSE {s0['train_mse_mm2']:.3f} mm^2, cross-validated MSE "
+             f"{s0['cv_score_mm2']:.3f} mm^2. Fitted: " +
+             ", ".join(f"{k} = {v:.4g}" for k, v in s0["parameters"].items()) + ".")
+    res_table = [["quantity", "RMS (mm)", "mean (mm)", "CV R^2", "p", "verdict"]] + [
+        [q, _f(res_b[q]["rms_mm"]), _f(res_b[q]["mean_mm"]), _f(res_b[q]["cv_r2"]),
+         f"{res_b[q]['p_value']:.3g}", "systematic" if res_b[q]["systematic"] else "noise-like"]
+        for q in QUANTITIES]
+    rank_table = [["rank", "effect", "CV MSE (mm^2)", "F", "p", "significant", "fitted strength",
+                   "signature corr.", "unabsorbed", "val MAE h before/after",
+                   "val MAE r_a before/after"]]
+    for r in rep["ranking"]:
+        sig = r["signature"]
+        rank_table.append([
+            str(r["rank"]), r["effect"], _f(r["score"], 3), _f(r["f_statistic"], 1),
+            f"{r['p_value']:.2g}", "yes" if r["significant"] else "no",
+            ", ".join(f"{k} = {v:.4g}" for k, v in r["effect_parameters"].items()),
+            f"{sig['correlation']:+.2f}", f"{sig['unabsorbed']:.2f}",
+            f"{r['val_mae_before']['h']:.2f} / {r['val_mae_after']['h']:.2f}",
+            f"{r['val_mae_before']['r_a']:.2f} / {r['val_mae_after']['r_a']:.2f}"])
+    name = rep["missing_effect"]
+    if name:
+        top = rep["ranking"][0]
+        sig = top["signature"]
+        best_q = max(QUANTITIES, key=lambda q: abs(sig["per_quantity"][q]))
+        verdict = (f"Missing effect: **{name}** ({get_effect(name).summary}). " + rep["decision"] +
+                   f". Fitted: " + ", ".join(f"{k} = {v:.4g}" for k, v in
+                                             rep["effect_parameters"].items()) + ".")
+        evidence = (f"Why it matches: {unabs(sig['unabsorbed'])} of its signature cannot be "
+                    f"absorbed by recalibrating the coefficients, and that part correlates with "
+                    f"the residual pattern at {sig['correlation']:+.2f} over all quantities "
+                    f"(strongest in {best_q}: {sig['per_quantity'][best_q]:+.2f}).")
+    else:
+        verdict = "No missing effect was found: " + rep["decision"] + "."
+        evidence = ("The ranking and the signatures below are reported for inspection; none of "
+                    "them is a significant improvement over the starting model.")
+    gap_table = [["quantity", "MAE before (mm)", "MAE after (mm)", "error % before",
+                  "error % after"]] + [
+        [q, _f(rep["before"][q]["mae_mm"]), _f(rep["after"][q]["mae_mm"]),
+         _f(rep["before"][q]["pct_error"], 1), _f(rep["after"][q]["pct_error"], 1)]
+        for q in QUANTITIES]
+    res_a = rep["residuals_after"]
+    left = [q for q in QUANTITIES if res_a[q]["systematic"]]
+    after_text = (("Residual structure left after the change: " + ", ".join(left) + ".")
+                  if left else "After the change no quantity's residuals test as systematic.")
+    return {"calib": calib, "where": where, "res_table": res_table, "rank_table": rank_table,
+            "verdict": verdict, "evidence": evidence, "gap_table": gap_table,
+            "after_text": after_text}
+
+
+def unabs(x: float) -> str:
+    return f"{100 * x:.0f} %"
+
+
+def _md_table(rows) -> list[str]:
+    md = lambda cells: "| " + " | ".join(str(c).replace("|", "\\|") for c in cells) + " |"  # noqa: E731
+    return [md(rows[0]), md(["---"] * len(rows[0]))] + [md(r) for r in rows[1:]]
+
+
+def _markdown(rep: dict) -> str:
+    st = _story(rep)
+    d = rep["data"]
+    lines = ["# Discrepancy discovery", "", f"> **{d['provenance']}**", "",
+             f"- data: `{d['path']}` (sha256 `{d['sha256']}`), {d['n_train']} train / "
+             f"{d['n_val']} val rows", f"- source line: {d['source']}",
+             f"- starting material: {rep['start_material']['label']} (sha256 "
+             f"`{rep['start_material']['sha256']}`)", "",
+             "## 1. Where the model is wrong", "", st["calib"], "", st["where"], ""]
+    lines += _md_table(st["res_table"])
+    lines += ["", "![residuals before](residuals_before.png)", "",
+              "## 2. Candidate effects, refitted and ranked", "",
+              f"Ranking: {METHOD['ranking']}. Significance: {METHOD['significance']} "
+              f"(threshold {rep['significance_threshold']:.3g}).", ""]
+    lines += _md_table(st["rank_table"])
+    lines += ["", "![ranking](ranking.png)", "", "## 3. The evidence", "", st["verdict"], "",
+              st["evidence"], "", "![signatures](signatures.png)", "",
+              "## 4. The gap before and after, validation rows", ""]
+    lines += _md_table(st["gap_table"])
+    lines += ["", "![before and after](before_after.png)", "", st["after_text"], "",
+              "![residuals after](residuals_after.png)", "", "## Method", ""]
+    lines += [f"- {k}: {v}" for k, v in METHOD.items()]
+    lines += ["", f"Generated by {rep['generator']} {rep['version']}; the numbers are in "
+              "report.json.", ""]
+    return "\n".join(lines)
+
+
+def _html_table(rows, cls="metrics") -> str:
+    e = html.escape
+    head = "".join(f"<th>{e(str(c))}</th>" for c in rows[0])
+    body = "".join("<tr>" + "".join(f"<td>{e(str(c))}</td>" for c in r) + "</tr>"
+                   for r in rows[1:])
+    return (f'<div class="scroll"><table class="{cls}"><thead><tr>{head}</tr></thead>'
+            f'<tbody>{body}</tbody></table></div>')
+
+
+def _bold(text: str) -> str:
+    parts = html.escape(text).split("**")
+    return "".join(f"<strong>{p}</strong>" if i % 2 else p for i, p in enumerate(parts))
+
+
+def _html(rep: dict, images: dict) -> str:
+    e = html.escape
+    st = _story(rep)
+    d = rep["data"]
+    kind = "synthetic" if d["synthetic"] else ("unspecified" if d["source"] == "unspecified" else "measured")
+
+    def img(name, alt):
+        uri = "data:image/png;base64," + base64.b64encode(images[name]).decode("ascii")
+        return f'<img class="wide" src="{uri}" alt="{e(alt)}">'
+
+    method = "".join(f"<li><strong>{e(k)}</strong>: {e(v)}</li>" for k, v in METHOD.items())
+    return f"""<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>stitchswitch discovery: {e(os.path.basename(d['path']))}</title>
+<style>{_CSS}</style>
+</head>
+<body>
+<main>
+<h1>Discrepancy discovery</h1>
+<p class="banner {kind}">{e(d['provenance'])}</p>
+<p class="note">data <code>{e(d['path'])}</code> (sha256 <code>{e(d['sha256'])}</code>),
+{d['n_train']} train / {d['n_val']} val rows; starting material {e(rep['start_material']['label'])}</p>
+<h2>1. Where the model is wrong</h2>
+<p>{e(st['calib'])}</p><p>{e(st['where'])}</p>
+{_html_table(st['res_table'])}
+{img('residuals_before.png', 'residual maps before')}
+<h2>2. Candidate effects, refitted and ranked</h2>
+<p class="note">Ranking: {e(METHOD['ranking'])}. Significance: {e(METHOD['significance'])}
+(threshold {rep['significance_threshold']:.3g}).</p>
+{_html_table(st['rank_table'])}
+{img('ranking.png', 'ranking')}
+<h2>3. The evidence</h2>
+<p>{_bold(st['verdict'])}</p><p>{e(st['evidence'])}</p>
+{img('signatures.png', 'signatures')}
+<h2>4. The gap before and after, validation rows</h2>
+{_html_table(st['gap_table'])}
+{img('before_after.png', 'before and after')}
+<p>{e(st['after_text'])}</p>
+{img('residuals_after.png', 'residual maps after')}
+<h2>Method</h2>
+<ul class="note">{method}</ul>
+<footer>Generated by {e(rep['generator'])} {e(rep['version'])}. The numbers are in report.json;
+the figures are also saved as PNG files next to this page.</footer>
+</main>
+</body>
+</html>
+"""
+
+
+def write_discovery_report(disc, data, start, outdir, start_label: str = "default") -> dict:
+    """Write the report directory ``outdir`` as a whole; returns the content of report.json."""
+    check_discovery_dir(outdir)
+    rep = report_dict(disc, data, start, start_label)
+    images = all_figures(disc)
+    files = dict(images)
+    files["report.json"] = report_json(rep).encode("utf-8")
+    files["report.md"] = lambda: _markdown(rep).encode("utf-8")
+    files["report.html"] = lambda: _html(rep, images).encode("utf-8")
+    write_outdir(outdir, files, previous=_PREVIOUS)
+    return rep
