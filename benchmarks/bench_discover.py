@@ -61,8 +61,8 @@ def _scaled(name: str, values, scale: float) -> list:
 
 
 def cases(per_effect: int, n_null: int, fem: bool, scale: float = 1.0, control: bool = True):
-    from stitchswitch.validation.discovery.synthetic import draw_values
     from stitchswitch.validation.discovery.effects import LIBRARY
+    from stitchswitch.validation.discovery.synthetic import draw_values
 
     out, seed = [], 100
     tag = "" if scale == 1.0 else f"-x{scale:g}"
@@ -86,9 +86,9 @@ def cases(per_effect: int, n_null: int, fem: bool, scale: float = 1.0, control: 
 
 
 def run_case(case: dict, executor) -> dict:
-    from stitchswitch.validation.discovery.workflow import discover
-    from stitchswitch.validation.discovery.synthetic import START_MATERIAL, dataset_text
     from stitchswitch.validation.discovery.effects import LIBRARY
+    from stitchswitch.validation.discovery.synthetic import START_MATERIAL, dataset_text
+    from stitchswitch.validation.discovery.workflow import discover
     from stitchswitch.validation.measured import parse_measurements
 
     t0 = time.perf_counter()
@@ -131,11 +131,11 @@ def _oracle(disc, clean, source, values, executor) -> dict:
     """The hidden effect's model fitted to the noisy training rows of ``disc`` (a finished
     discovery run) from the true parameters (the workflow's least squares and step budget):
     its validation gap and noisy MAE."""
-    from stitchswitch.validation.discovery.workflow import DiscoveryConfig
     from stitchswitch.validation.discovery.evaluate import Evaluator
     from stitchswitch.validation.discovery.fit import fit
     from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
     from stitchswitch.validation.discovery.synthetic import START_MATERIAL, TRUE_MATERIAL
+    from stitchswitch.validation.discovery.workflow import DiscoveryConfig
 
     tr, va = disc.split == "train", disc.split == "val"
     designs = np.column_stack([disc.d_mm, disc.fill])

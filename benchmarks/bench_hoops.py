@@ -70,6 +70,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
 
     import cvxpy  # noqa: F401  - import time is not grouping time
+
     from stitchswitch.layout.embroidery.machines import builtin_catalogue
     machine = builtin_catalogue().machine("janome-550e")
     hoops = (machine.hoop(args.hoop),) if args.hoop else machine.hoops

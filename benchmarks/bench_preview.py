@@ -99,7 +99,8 @@ def main(argv=None) -> int:
         phases = json.loads(subprocess.run([sys.executable, "-c", PHASES, design, png], check=True,
                                            capture_output=True, text=True).stdout)
     load = os.getloadavg()
-    result = {"load_average_1_5_15": load, "cpus": os.cpu_count(), "patches": 40, "size": "1200x900", "view": "iso", "runs": args.runs,
+    result = {"load_average_1_5_15": load, "cpus": os.cpu_count(), "patches": 40, "size": "1200x900", "view": "iso",
+              "runs": args.runs,
               "cli_s": cli, "cli_median_s": statistics.median(cli), "cli_max_s": max(cli),
               "cli_cpu_s": cpu, "cli_cpu_median_s": statistics.median(cpu),
               "png_kB": png_kb, "phases": phases, "target_s": TARGET_S,

@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.solvers import adam, constraints, continuation
 from stitchswitch.reduced.model import assembly
 from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.solvers import adam, constraints, continuation
 from stitchswitch.reduced.solvers.solve import solve
 
 MATERIAL = DEFAULT_MATERIAL.replace(n_nodes=60)

@@ -7,8 +7,7 @@ from click.testing import CliRunner
 from stitchswitch.cli.main import cli
 from stitchswitch.reduced.model.material_io import save_material
 from stitchswitch.validation.discovery.report import check_discovery_dir
-from stitchswitch.validation.discovery.synthetic import (SIGMA_MM, START_MATERIAL, TRUE_MATERIAL,
-                                                         dataset_text)
+from stitchswitch.validation.discovery.synthetic import SIGMA_MM, START_MATERIAL, TRUE_MATERIAL, dataset_text
 
 COARSE = dict(n_nodes=80, dr_max_mm=1.0)
 ARGS = ["--effects", "prestretch_loss", "--folds", "2", "--workers", "1"]

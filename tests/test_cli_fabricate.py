@@ -6,12 +6,13 @@ import os
 import pytest
 from click.testing import CliRunner
 
-from decoders import dst, jef
 from stitchswitch.cli.main import cli
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.embroidery.patch_design import geometry_for
 from stitchswitch.layout.fabrication import fabricate as fab
 from stitchswitch.layout.garment.design_io import load_design
-from stitchswitch.layout.embroidery.patch_design import geometry_for
+
+from decoders import dst, jef
 
 
 def patch(pid, x, y, d, p, conductive=None, top="#1b1b1b"):
@@ -209,7 +210,7 @@ def test_turned_hoop_turns_the_stitches(tmp_path):
     cx, cy = (10 * v for v in h["patches"][0]["position_hoop_mm"])
     d = jef.decode((out / "hoop01.jef").read_bytes())
     block, ys = 0, {0: [], 1: []}
-    for c, x, y in d.records:
+    for c, _x, y in d.records:
         if c == dst.COLOR:
             block += 1
         elif c == dst.STITCH:

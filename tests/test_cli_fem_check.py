@@ -42,8 +42,8 @@ def test_fem_solve_writes_a_mesh_with_the_height(tmp_path):
 
 def test_variant_terms_attribute_the_gap():
     """Swapping the hoop term's boundary quadrature is measured, and it shrinks the h gap."""
-    from stitchswitch.fem_reference.check import check_design
     from stitchswitch import Patch
+    from stitchswitch.fem_reference.check import check_design
 
     row = check_design(Patch(25.0, 0.8), start="reduced")
     assert abs(row["hoop_node_average_300"]["rel_h_mm"]) < 0.75 * abs(row["reduced"]["300"]["rel_h_mm"])

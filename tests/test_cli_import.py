@@ -1,5 +1,4 @@
 """stitchswitch import: DXF patterns (real fixtures) and rectangles into a design file."""
-import pathlib
 
 import pytest
 from click.testing import CliRunner
@@ -7,9 +6,10 @@ from click.testing import CliRunner
 from stitchswitch.cli.main import cli
 from stitchswitch.layout.garment.design_io import load_design
 
-DXF = pathlib.Path(__file__).resolve().parents[2] / "shared/data/external/dxf"
+from helpers import EXTERNAL
+
+DXF = EXTERNAL / "dxf"
 IN = 25.4
-needs_fixtures = pytest.mark.skipif(not DXF.is_dir(), reason=f"fixtures not found in {DXF}")
 
 
 def run(*args):
@@ -29,7 +29,6 @@ def test_rectangle(tmp_path):
     assert r.exit_code == 0 and load_design(out).pieces[0].name == "sleeve"
 
 
-@needs_fixtures
 def test_gerber_tank_one_size_and_deterministic(tmp_path):
     out, again = tmp_path / "t.json", tmp_path / "t2.json"
     r = run("import", DXF / "WM_LOOSE_SHAPE_TANK_AAMA.DXF", "--size", "26", "-o", out)
@@ -44,7 +43,6 @@ def test_gerber_tank_one_size_and_deterministic(tmp_path):
     assert out.read_bytes() == again.read_bytes()
 
 
-@needs_fixtures
 def test_gerber_tank_pieces_option(tmp_path):
     out = tmp_path / "t.json"
     r = run("import", DXF / "WM_LOOSE_SHAPE_TANK_AAMA.DXF", "--size", "40",
@@ -53,7 +51,6 @@ def test_gerber_tank_pieces_option(tmp_path):
     assert [p.name for p in load_design(out).pieces] == ["RELAXED TANK BK V2"]
 
 
-@needs_fixtures
 @pytest.mark.parametrize("args,message", [
     ([], "the pattern has 14 sizes; choose one with --size: '26', '28'"),
     (["--size", "XL"], "size 'XL' is not in the pattern; its sizes are '26', '28'"),
@@ -68,7 +65,6 @@ def test_unknown_size_or_piece_lists_what_there_is(tmp_path, args, message):
     assert not out.exists()
 
 
-@needs_fixtures
 def test_clo_pattern_and_generic_dxf(tmp_path):
     out = tmp_path / "c.json"
     assert run("import", DXF / "clo-pattern_R10.dxf", "-o", out).exit_code == 0

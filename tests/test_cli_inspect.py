@@ -1,11 +1,12 @@
-import pathlib
 
 import pytest
 from click.testing import CliRunner
 
 from stitchswitch.cli.main import cli
 
-STAR = pathlib.Path(__file__).resolve().parents[2] / "shared/data/external/embroidery"
+from helpers import EXTERNAL
+
+STAR = EXTERNAL / "embroidery"
 
 
 @pytest.mark.parametrize("name", ["Star.DST", "Star.JEF", "Star.EXP", "Star.pes"])

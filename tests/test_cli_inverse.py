@@ -1,7 +1,6 @@
 import json
 
 import pytest
-
 from click.testing import CliRunner
 
 from stitchswitch.cli.main import cli
@@ -41,7 +40,8 @@ def test_bad_options_exit_2():
 def test_inverse_on_a_given_map_uses_its_material(tmp_path):
     import numpy as np
 
-    from stitchswitch.reduced.design_space import storage as map_io, precompute
+    from stitchswitch.reduced.design_space import precompute
+    from stitchswitch.reduced.design_space import storage as map_io
     from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
     other = DEFAULT_MATERIAL.replace(w_b_emb=12.0)

@@ -1,8 +1,9 @@
 import pytest
 from click.testing import CliRunner
 
-from decoders import dst, jef
 from stitchswitch.cli.main import cli
+
+from decoders import dst, jef
 
 
 def run(*args):

@@ -8,9 +8,9 @@ import shapely
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.check.constraints import CheckLimits, Violation, check_design
-from stitchswitch.layout.garment.design import CompositeSpec, Design, MachineSpec, PatchSpec, PieceSpec
-from stitchswitch.layout.embroidery.patch_design import geometry_for
 from stitchswitch.layout.check.rules.features import feature_sizes
+from stitchswitch.layout.embroidery.patch_design import geometry_for
+from stitchswitch.layout.garment.design import CompositeSpec, Design, MachineSpec, PatchSpec, PieceSpec
 
 ETA = 1.7        # the default material's pre-stretch
 

@@ -4,10 +4,10 @@ import pytest
 
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
 from stitchswitch.reduced.design_space import smoothness as map_check
-from stitchswitch.reduced.design_space.design_map import FLAG_SMOOTH, FLAG_UNEXPLAINED, FLAG_ONSET
 from stitchswitch.reduced.design_space.cache import default_map, map_for
-from stitchswitch.reduced.model.material_io import material_hash
+from stitchswitch.reduced.design_space.design_map import FLAG_ONSET, FLAG_SMOOTH, FLAG_UNEXPLAINED
 from stitchswitch.reduced.design_space.precompute import DEFAULT_DIAMETERS_MM, DEFAULT_FILLS
+from stitchswitch.reduced.model.material_io import material_hash
 
 
 @pytest.fixture(scope="module")

@@ -5,9 +5,10 @@ import json
 import pytest
 from click.testing import CliRunner
 
-from decoders import dst, jef
 from stitchswitch.cli.main import cli
 from stitchswitch.demos.tennis_pocket import BALL_DIAMETER_MM, POCKET_HEIGHT_MM
+
+from decoders import dst, jef
 
 EXPECTED = {"design.json", "check.json", "preview.png", "preview.vtu", "patch.png",
             "summary.html", "fabrication/fabrication.html", "fabrication/fabrication.json"}

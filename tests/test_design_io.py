@@ -8,10 +8,22 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.garment.design import (CompositeSpec, Design, MachineSpec, MaterialRef,
-                                        PatchSpec, PieceSpec, Threads)
-from stitchswitch.layout.garment.design_io import (design_from_dict, design_to_dict, dumps_design,
-                                           load_design, save_design)
+from stitchswitch.layout.garment.design import (
+    CompositeSpec,
+    Design,
+    MachineSpec,
+    MaterialRef,
+    PatchSpec,
+    PieceSpec,
+    Threads,
+)
+from stitchswitch.layout.garment.design_io import (
+    design_from_dict,
+    design_to_dict,
+    dumps_design,
+    load_design,
+    save_design,
+)
 from stitchswitch.reduced.model.material_io import save_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
@@ -258,7 +270,7 @@ def test_schema_accepts_the_examples_and_rejects_bad_values():
     schema = json.loads(SCHEMA.read_text())
     assert set(schema["required"]) == {"version", "pieces", "patches"}
     assert set(schema["properties"]) == {"version", "pieces", "patches", "material", "machine"}
-    import jsonschema                 # in the test extra: never skipped
+    import jsonschema  # in the test extra: never skipped
     jsonschema.Draft202012Validator.check_schema(schema)
     validator = jsonschema.Draft202012Validator(schema)
     for obj in [base(), *_doc_examples(), design_to_dict(design_from_dict(base()))]:

@@ -3,7 +3,9 @@ import numpy as np
 import pytest
 
 from stitchswitch import DEFAULT_MATERIAL, InvalidInputError, Patch, solve
-from stitchswitch.reduced.design_space import smoothness as map_check, storage as map_io, precompute
+from stitchswitch.reduced.design_space import precompute
+from stitchswitch.reduced.design_space import smoothness as map_check
+from stitchswitch.reduced.design_space import storage as map_io
 from stitchswitch.reduced.design_space.design_map import FLAG_ONSET, FLAG_SMOOTH, FLAG_UNRESOLVED, KEYPOINTS
 
 

@@ -12,16 +12,23 @@ import pytest
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.params import Patch
-from stitchswitch.validation.discovery.workflow import DiscoveryConfig, discover
 from stitchswitch.validation.discovery.cv import f_test, fold_labels, sign_flip_test
 from stitchswitch.validation.discovery.evaluate import Evaluator
 from stitchswitch.validation.discovery.fit import fit, jacobian, linearized_start, scan_values
 from stitchswitch.validation.discovery.residuals import systematic_test
 from stitchswitch.validation.discovery.signature import explain, signature
 from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
-from stitchswitch.validation.discovery.synthetic import (N_VAL, SIGMA_MM, START_MATERIAL,
-                                                         TRAIN_D_MM, TRAIN_FILL, TRUE_MATERIAL,
-                                                         dataset_text, draw_values)
+from stitchswitch.validation.discovery.synthetic import (
+    N_VAL,
+    SIGMA_MM,
+    START_MATERIAL,
+    TRAIN_D_MM,
+    TRAIN_FILL,
+    TRUE_MATERIAL,
+    dataset_text,
+    draw_values,
+)
+from stitchswitch.validation.discovery.workflow import DiscoveryConfig, discover
 from stitchswitch.validation.measured import parse_measurements
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
@@ -154,8 +161,8 @@ def test_signature_is_zero_to_probe_secant():
     ev = Evaluator()
     x = spec.encode(START)
     s = signature(spec, ev, [(50.0, 0.8)], x[:5])
-    from stitchswitch.validation.discovery.effects import solve_effects
     from stitchswitch.reduced.solvers.solve import solve
+    from stitchswitch.validation.discovery.effects import solve_effects
     on = solve_effects(Patch(50.0, 0.8), START, {"prestretch_loss": (0.05,)}).keypoints
     off = solve(Patch(50.0, 0.8), START).keypoints
     assert s[0, 1] == pytest.approx((on.r_a_mm - off.r_a_mm) / 0.05, rel=1e-9)

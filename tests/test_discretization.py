@@ -2,7 +2,8 @@
 
 N_in = ceil((d / 2 eta) / dR_max), dR = (d / 2 eta) / N_in, node N_in on the embroidery
 boundary (the printed rule: tested with the small-patch refinement switched off, ``LITERAL``;
-the refinement N_in >= (N - 1) / domain_max_rb is tested on its own below); segment i inside iff i < N_in; lambda = 1 + (eta - 1) p^2 and
+the refinement N_in >= (N - 1) / domain_max_rb is tested on its own below); segment i inside
+iff i < N_in; lambda = 1 + (eta - 1) p^2 and
 k = k_emb p^2 + k_fab (1 - p^2) inside, lambda = 1 and k = k_fab outside; the bending hinge i
 (node i+1) uses the weight of segment i.
 """
@@ -15,7 +16,8 @@ import pytest
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.discretization import Grid, make_grid, min_inside, n_inside
-from stitchswitch.reduced.model.params import DEFAULT_MATERIAL as SHIPPED, Material, Patch
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL as SHIPPED
+from stitchswitch.reduced.model.params import Patch
 
 # The printed rule: the domain may be any number of patch radii (no small-patch refinement).
 DEFAULT_MATERIAL = SHIPPED.replace(domain_max_rb=1000.0)

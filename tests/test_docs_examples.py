@@ -55,7 +55,7 @@ def assert_output(expected, actual: str, command: str):
         try:
             pos = lines.index(want, pos) + 1
         except ValueError:
-            raise AssertionError(f"{command!r}: expected line {want!r} not in output:\n{actual}")
+            raise AssertionError(f"{command!r}: expected line {want!r} not in output:\n{actual}") from None
 
 
 def test_guide_has_runnable_examples():

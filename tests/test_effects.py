@@ -8,11 +8,24 @@ from stitchswitch.reduced.model import assembly
 from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 from stitchswitch.reduced.solvers.solve import solve
-from stitchswitch.validation.discovery.effects import (LIBRARY, Effect, EffectParameter, configure,
-                                             get_effect, register_effect, solve_effects)
-from stitchswitch.validation.discovery.effects import gravity_sag, hardening, hoop_bending, tension_asymmetry
+from stitchswitch.validation.discovery.effects import (
+    LIBRARY,
+    Effect,
+    EffectParameter,
+    configure,
+    get_effect,
+    gravity_sag,
+    hardening,
+    hoop_bending,
+    register_effect,
+    solve_effects,
+    tension_asymmetry,
+)
 from stitchswitch.validation.discovery.effects.registry import LIBRARY as REGISTRY
-from tests.conftest import fd_gradient as _fd_gradient, pack as _pack, random_state
+
+from helpers import fd_gradient as _fd_gradient
+from helpers import fd_jacobian, random_state
+from helpers import pack as _pack
 
 FAST = DEFAULT_MATERIAL.replace(n_nodes=120, dr_max_mm=1.0)
 PATCH = Patch(20.0, 0.8)
@@ -49,7 +62,7 @@ def test_new_term_derivatives_match_finite_differences(small_grid, name, seed):
     assert scale > 0
     np.testing.assert_allclose(g, g_fd, rtol=0, atol=1e-6 * scale)
     H = assembly.band_to_dense(hb)
-    H_fd = np.array([_fd_gradient(lambda y: gradient(y)[k], x) for k in range(x.size)])
+    H_fd = fd_jacobian(gradient, x)
     np.testing.assert_allclose(H, H_fd, rtol=0, atol=1e-6 * max(np.max(np.abs(H_fd)), 1e-12))
 
 
@@ -64,9 +77,7 @@ def test_grid_effects_derivatives_through_wrapped_terms(small_grid, name):
     _, g, hb = assembly.derivatives(r, z, small_grid, terms)
     g_fd = _fd_gradient(lambda y: assembly.energy(y[0::2], y[1::2], small_grid, terms), x)
     np.testing.assert_allclose(g, g_fd, rtol=0, atol=1e-6 * np.max(np.abs(g)))
-    H_fd = np.array([_fd_gradient(lambda y: assembly.gradient(y[0::2], y[1::2], small_grid,
-                                                               terms)[k], x)
-                     for k in range(x.size)])
+    H_fd = fd_jacobian(lambda y: assembly.gradient(y[0::2], y[1::2], small_grid, terms), x)
     np.testing.assert_allclose(assembly.band_to_dense(hb), H_fd, rtol=0,
                                atol=1e-6 * np.max(np.abs(H_fd)))
 

@@ -166,7 +166,6 @@ def test_continuation_reaches_the_equilibrium_of_the_reduced_start(d, p, monkeyp
     assert sol.converged and sol.residual <= 1e-9
     assert result.lowest_eigenvalue > 0                   # a local minimum, not a saddle
     assert result.stages[0].t <= continuation.INITIAL_STEP and result.stages[-1].t == 1.0
-    assert sol.solve_s < 6.0
     kp, kp_ref = keypoints_from_profile(*sol.sample()), keypoints_from_profile(*ref.sample())
     for k in KEYPOINTS:
         assert getattr(kp, k) == pytest.approx(getattr(kp_ref, k), rel=5e-3), k

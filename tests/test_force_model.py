@@ -7,9 +7,15 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.design_space.force_model import (ForceModel, ForceSample, default_force_csv_path,
-                                              default_force_fit, fit_force_model, load_force_csv,
-                                              parse_force_csv)
+from stitchswitch.reduced.design_space.force_model import (
+    ForceModel,
+    ForceSample,
+    default_force_csv_path,
+    default_force_fit,
+    fit_force_model,
+    load_force_csv,
+    parse_force_csv,
+)
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SCRIPT = ROOT / "scripts" / "make_force_dataset.py"

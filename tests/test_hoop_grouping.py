@@ -7,12 +7,14 @@ import pytest
 import shapely
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.fabrication.grouping import free as hoop_free, garment as hoop_garment, greedy as hoop_greedy
+from stitchswitch.layout.embroidery.hoop_spec import Hoop
+from stitchswitch.layout.embroidery.hoops import JANOME_550E_HOOPS
+from stitchswitch.layout.fabrication.grouping import free as hoop_free
+from stitchswitch.layout.fabrication.grouping import garment as hoop_garment
+from stitchswitch.layout.fabrication.grouping import greedy as hoop_greedy
 from stitchswitch.layout.fabrication.grouping.footprints import Footprint, StretchedPiece
 from stitchswitch.layout.fabrication.grouping.group import group
 from stitchswitch.layout.fabrication.grouping.mip import CoverSolution
-from stitchswitch.layout.embroidery.hoop_spec import Hoop
-from stitchswitch.layout.embroidery.hoops import JANOME_550E_HOOPS
 
 SQ = Hoop("SQ", 140.0, 140.0, 2, margin_mm=5.0, frame_width_mm=20.0)
 RE = Hoop("RE", 140.0, 200.0, 2, margin_mm=5.0, frame_width_mm=20.0)

@@ -5,12 +5,12 @@ import itertools
 import numpy as np
 import pytest
 
-from stitchswitch.layout.fabrication import order as hoop_order
-from stitchswitch.layout.fabrication.grouping.footprints import Footprint
-from stitchswitch.layout.fabrication.order import order_hoopings
-from stitchswitch.layout.fabrication.grouping.result import Hooping
 from stitchswitch.layout.embroidery.hoop_spec import Hoop
 from stitchswitch.layout.embroidery.ordering import path_length
+from stitchswitch.layout.fabrication import order as hoop_order
+from stitchswitch.layout.fabrication.grouping.footprints import Footprint
+from stitchswitch.layout.fabrication.grouping.result import Hooping
+from stitchswitch.layout.fabrication.order import order_hoopings
 
 SQ = Hoop("SQ", 140.0, 140.0, 2, margin_mm=5.0, frame_width_mm=20.0)
 

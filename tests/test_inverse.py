@@ -51,7 +51,8 @@ def test_unreachable_target_names_the_achievable_range(target, range_text):
     assert "not achievable" in str(info.value) and range_text in str(info.value)
 
 
-@pytest.mark.parametrize("kwargs, name", [({"height_mm": -1.0}, "height_mm"), ({"height_mm": float("nan")}, "height_mm"),
+@pytest.mark.parametrize("kwargs, name", [({"height_mm": -1.0}, "height_mm"),
+                                          ({"height_mm": float("nan")}, "height_mm"),
                                           ({"height_mm": 5.0, "min_fill": 1.5}, "min_fill"),
                                           ({"height_mm": 5.0, "force_range_N": (0.5, 0.1)}, "force_range_N"),
                                           ({"height_mm": 5.0, "count": 0}, "count")])

@@ -12,7 +12,12 @@ from scipy.special import erf
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.keypoints import (
-    FLAT_H_MM, FOOT_FRACTION, Keypoints, keypoints, keypoints_from_profile)
+    FLAT_H_MM,
+    FOOT_FRACTION,
+    Keypoints,
+    keypoints,
+    keypoints_from_profile,
+)
 
 N, DR, N_IN = 300, 0.5, 40
 R = np.arange(N) * DR

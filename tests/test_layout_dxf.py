@@ -1,5 +1,4 @@
-"""DXF import against real pattern-CAD exports (../shared/data/external/dxf) and broken inputs."""
-import pathlib
+"""DXF import against real pattern-CAD exports (tests/data/external/dxf) and broken inputs."""
 
 import ezdxf
 import numpy as np
@@ -8,9 +7,10 @@ import pytest
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.garment.dxf.reader import import_dxf
 
-DXF = pathlib.Path(__file__).resolve().parents[2] / "shared/data/external/dxf"
+from helpers import EXTERNAL
+
+DXF = EXTERNAL / "dxf"
 IN = 25.4
-needs_fixtures = pytest.mark.skipif(not DXF.is_dir(), reason=f"fixtures not found in {DXF}")
 
 
 def _ring_ok(piece):
@@ -19,7 +19,6 @@ def _ring_ok(piece):
     assert not np.allclose(ring[0], ring[-1])               # closed ring, last point not repeated
 
 
-@needs_fixtures
 def test_gerber_tank_28_blocks_in_inches():
     pieces = import_dxf(DXF / "WM_LOOSE_SHAPE_TANK_AAMA.DXF")
     assert pieces.style == "aama" and len(pieces) == 28
@@ -41,7 +40,6 @@ def test_gerber_tank_28_blocks_in_inches():
     assert fronts[-1].bbox_mm[1] > fronts[0].bbox_mm[1]
 
 
-@needs_fixtures
 def test_clo_pattern_nine_pieces_metric():
     pieces = import_dxf(DXF / "clo-pattern_R10.dxf")
     assert len(pieces) == 9 and {p.size for p in pieces} == {"M"}
@@ -53,7 +51,6 @@ def test_clo_pattern_nine_pieces_metric():
         _ring_ok(p)
 
 
-@needs_fixtures
 def test_clo_box_one_rectangle_in_inches():
     (piece,) = import_dxf(DXF / "clo-box_R10.dxf")
     assert (piece.name, piece.size) == ("Pattern2D_4937", "M")
@@ -62,7 +59,6 @@ def test_clo_box_one_rectangle_in_inches():
     assert w == pytest.approx(118.207 * IN, abs=0.1) and h == pytest.approx(78.832 * IN, abs=0.1)
 
 
-@needs_fixtures
 def test_r2018_lwpolylines_ellipses_circles():
     pieces = import_dxf(DXF / "ezdxf_forms_R2018_LWPOLYLINE.dxf")
     kinds = [p.name.split("_")[0] for p in pieces]
@@ -72,7 +68,6 @@ def test_r2018_lwpolylines_ellipses_circles():
         _ring_ok(p)
 
 
-@needs_fixtures
 def test_r2007_closed_splines_in_cm():
     pieces = import_dxf(DXF / "ezdxf_no_layouts_R2007_SPLINE.dxf")
     assert len(pieces) == 2 and all(p.name.startswith("SPLINE") for p in pieces)

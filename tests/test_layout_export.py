@@ -1,18 +1,20 @@
 import math
-import pathlib
 
 import numpy as np
 import pyembroidery as pe
 import pytest
 
-from decoders import dst, jef
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.embroidery import export, stitch_preview as preview
+from stitchswitch.layout.embroidery import export
+from stitchswitch.layout.embroidery import stitch_preview as preview
 from stitchswitch.layout.embroidery import stitches as st
 from stitchswitch.layout.embroidery.hoops import JANOME_550E_HOOPS, choose_hoop
 from stitchswitch.layout.embroidery.patch_geometry import ByRing, make_patch
 
-STAR = pathlib.Path(__file__).resolve().parents[2] / "shared/data/external/embroidery"
+from decoders import dst, jef
+from helpers import EXTERNAL
+
+STAR = EXTERNAL / "embroidery"
 
 
 @pytest.fixture(scope="module")

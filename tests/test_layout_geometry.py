@@ -5,8 +5,7 @@ import pytest
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery import tessellation as tess
-from stitchswitch.layout.embroidery.patch_geometry import (ByAnnulus, ByIndex, ByPolygon, ByRing,
-                                                make_patch)
+from stitchswitch.layout.embroidery.patch_geometry import ByAnnulus, ByIndex, ByPolygon, ByRing, make_patch
 
 
 @pytest.mark.parametrize("diameter", [15.0, 40.0, 73.0, 100.0])

@@ -6,8 +6,17 @@ import pytest
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery.ordering import nearest_neighbour, path_length, visiting_order
 from stitchswitch.layout.embroidery.patch_geometry import ByRing, make_patch
-from stitchswitch.layout.embroidery.stitches import (COLOR_CHANGE, CONDUCTIVE_THREAD, END, JUMP, STITCH,
-                                          TRIM, StitchParams, fill_piece, plan_stitches)
+from stitchswitch.layout.embroidery.stitches import (
+    COLOR_CHANGE,
+    CONDUCTIVE_THREAD,
+    END,
+    JUMP,
+    STITCH,
+    TRIM,
+    StitchParams,
+    fill_piece,
+    plan_stitches,
+)
 
 
 @pytest.fixture(scope="module")

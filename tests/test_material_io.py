@@ -7,7 +7,12 @@ import pytest
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.material_io import (
-    canonical_json, default_material_path, load_material, material_hash, save_material)
+    canonical_json,
+    default_material_path,
+    load_material,
+    material_hash,
+    save_material,
+)
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material
 
 OTHER = DEFAULT_MATERIAL.replace(w_b_fab=0.123456789012345, n_nodes=400, eta=1.5)

@@ -5,8 +5,13 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.validation.measured import (QUANTITIES, MeasuredData, Measurement,
-                                              load_measurements, parse_measurements)
+from stitchswitch.validation.measured import (
+    QUANTITIES,
+    MeasuredData,
+    Measurement,
+    load_measurements,
+    parse_measurements,
+)
 
 HEADER = "sample_id,d_mm,fill,h_mm,r_a_mm,z_a_mm,r_b_mm,z_b_mm,split,force_N,notes"
 ROWS = ["A1,40,0.8,11.7,14.6,5.8,14.7,5.7,train,0.21,first",

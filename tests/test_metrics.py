@@ -6,8 +6,14 @@ import pytest
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.validation.measured import parse_measurements
-from stitchswitch.validation.metrics import (PAPER_TABLE1, mae, pct_error, quantity_metrics,
-                                             split_metrics, table1)
+from stitchswitch.validation.metrics import (
+    PAPER_TABLE1,
+    mae,
+    pct_error,
+    quantity_metrics,
+    split_metrics,
+    table1,
+)
 
 
 def test_pct_error_and_mae_by_hand():

@@ -1,5 +1,4 @@
 """Placement: grid and polyline centres, centroids, ids, and the paper's two applications."""
-import pathlib
 
 import numpy as np
 import pytest
@@ -7,11 +6,20 @@ import pytest
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.check.constraints import check_design
 from stitchswitch.layout.garment.design import Design, PatchSpec, PieceSpec
-from stitchswitch.layout.garment.placement import (grid_centres, new_ids, piece_centroid, place_along,
-                                           place_at, place_grid, polyline_centres)
 from stitchswitch.layout.garment.patterns import button_array, button_pitch_mm, pocket_patch
+from stitchswitch.layout.garment.placement import (
+    grid_centres,
+    new_ids,
+    piece_centroid,
+    place_along,
+    place_at,
+    place_grid,
+    polyline_centres,
+)
 
-DXF = pathlib.Path(__file__).resolve().parents[2] / "shared/data/external/dxf"
+from helpers import EXTERNAL
+
+DXF = EXTERNAL / "dxf"
 ETA = 1.7
 
 
@@ -118,7 +126,6 @@ def test_button_array_pitch_leaves_the_requested_spacing():
     assert all(v.value == pytest.approx(3.0) for v in found)
 
 
-@pytest.mark.skipif(not DXF.is_dir(), reason="DXF fixtures not found")
 def test_pocket_patch_on_the_imported_tank_front():
     """The tennis pocket (paper 6.1) as one large patch on a real pattern piece."""
     from stitchswitch.layout.garment.dxf.reader import import_dxf

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.solvers import solve as solve_module
 from stitchswitch.reduced.model.material_io import material_hash
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.solvers import solve as solve_module
 from stitchswitch.validation import report as report_module
 from stitchswitch.validation.measured import QUANTITIES, load_measurements
 from stitchswitch.validation.metrics import PAPER_TABLE1

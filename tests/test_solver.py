@@ -4,9 +4,9 @@ import pytest
 
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
 from stitchswitch.reduced.model import assembly
+from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.solvers import continuation, newton
 from stitchswitch.reduced.solvers.constraints import admissible, kkt_residual
-from stitchswitch.reduced.model.discretization import make_grid
 
 DESIGNS = [(15.0, 0.6), (25.0, 1.0), (40.0, 0.8), (70.0, 1.0), (100.0, 0.6)]
 
@@ -35,7 +35,6 @@ def test_certified_solution_satisfies_constraints_and_kkt(solutions, dp):
     assert recomputed <= 1e-11
     assert recomputed == pytest.approx(sol.residual, abs=5e-12)
     # and a finite-difference check that r is stationary (independent of the analytic gradient)
-    E = assembly.energy(r, z, grid)
     for i in (1, grid.n_inside // 2, grid.n_inside, grid.n_inside + 3, grid.n_nodes - 1):
         h = 1e-6
         rp, rm = r.copy(), r.copy()
@@ -163,7 +162,9 @@ def test_regularization_to_zero_collapses_slack_segments_and_flattens():
 
 
 def test_default_material_shows_the_papers_qualitative_findings():
-    kp = lambda d, p: solve(Patch(d, p)).keypoints
+    def kp(d, p):
+        return solve(Patch(d, p)).keypoints
+
     assert kp(15.0, 0.6).h_mm < 1.0                                   # small, sparse: near flat
     heights = [kp(d, 0.8).h_mm for d in (20.0, 40.0, 60.0, 90.0)]
     assert all(a < b for a, b in zip(heights, heights[1:]))          # h grows with d

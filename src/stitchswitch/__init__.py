@@ -5,8 +5,8 @@ unless a name says otherwise (``diameter_mm`` is measured on the pre-stretched f
 as in the paper). The reduced model works internally in units of the node spacing dR
 (see ``docs/model.md``); everything it returns is converted back to mm.
 """
-from stitchswitch.errors import StitchSwitchError, InvalidInputError
-from stitchswitch.reduced.model.params import Material, Patch, DEFAULT_MATERIAL
+from stitchswitch.errors import InvalidInputError, StitchSwitchError
+from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material, Patch
 
 __version__ = "0.1.0"
 __all__ = [

@@ -1,15 +1,16 @@
 """Does the reduced model converge to the shell reference, and how far is N = 300 from it?
 
 For each design the reduced model is solved with N = 75, 150, 300, 600 nodes over the same
-domain (dR_max = 0.5 mm x 300 / N, and at most ``domain_max_rb`` patch radii; the bending weights are defined at 0.5 mm, so only the
-resolution changes) and the shell reference with ``ELEMENTS_INSIDE`` Hermite elements on the
-patch, solved by the prestretch continuation from the flat sheet (``start="continuation"``, the
-default, ``continuation.py``) or started from the N = 600 equilibrium (``start="reduced"``). The
-reference's own discretization error is estimated by solving it again with half the elements.
-Reported per keypoint: the relative difference (reduced - reference) / reference. Where the reduced model misses the reference,
-the cause is measured, not assumed: the N = 300 solve is repeated with one term's
-discretization swapped (``reduced.model.terms.variants``: the hoop term with node-averaged
-coefficients at the boundary), and the change of the gap is reported.
+domain (dR_max = 0.5 mm x 300 / N, and at most ``domain_max_rb`` patch radii; the bending
+weights are defined at 0.5 mm, so only the resolution changes) and the shell reference with
+``ELEMENTS_INSIDE`` Hermite elements on the patch, solved by the prestretch continuation from
+the flat sheet (``start="continuation"``, the default, ``continuation.py``) or started from the
+N = 600 equilibrium (``start="reduced"``). The reference's own discretization error is estimated
+by solving it again with half the elements. Reported per keypoint: the relative difference
+(reduced - reference) / reference. Where the reduced model misses the reference, the cause is
+measured, not assumed: the N = 300 solve is repeated with one term's discretization swapped
+(``reduced.model.terms.variants``: the hoop term with node-averaged coefficients at the
+boundary), and the change of the gap is reported.
 """
 from __future__ import annotations
 

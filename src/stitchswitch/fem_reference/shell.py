@@ -16,7 +16,8 @@ positive definite. ``"eigen"`` (used by the prestretch continuation, ``continuat
 from any equilibrium): the free Hessian, Jacobi-scaled and permuted to node order (a band of
 half-width 7), is used as is when its banded Cholesky succeeds, else shifted by
 2 |lambda_min| + 1e-12 with lambda_min its lowest eigenvalue (LAPACK's banded eigensolver), so
-that the step descends and leaves saddles along negative curvature; the step is backtracked until the energy satisfies Armijo and no meridional stretch
+that the step descends and leaves saddles along negative curvature; the step is backtracked
+until the energy satisfies Armijo and no meridional stretch
 |(r', z')| (at the quadrature points and at the nodes) falls below half its value, which keeps
 every stretch positive (the energy is +inf at zero stretch, but the pole's slope dof is not seen
 by any quadrature point).
@@ -30,8 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from scipy.interpolate import CubicSpline
-from scipy.linalg import (LinAlgError, cho_solve_banded, cholesky_banded, eig_banded,
-                          solveh_banded)
+from scipy.linalg import LinAlgError, cho_solve_banded, cholesky_banded, eig_banded, solveh_banded
 from scipy.sparse.linalg import splu
 
 from stitchswitch.fem_reference.density import density

@@ -17,8 +17,8 @@ import shutil
 from pathlib import Path
 from typing import Callable
 
-from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.atomic import atomic_write_bytes
 
 #: ``previous(path) -> None`` if the non-empty directory ``path`` is an earlier output of this
 #: tool (so it may be replaced), else the reason it is not, e.g. "holds 'x.txt', not from this

@@ -18,7 +18,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.keypoints import Keypoints, keypoints_from_profile
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material, Patch
 
@@ -46,7 +45,8 @@ class PatchProfile:
 
 def available_map(material: Material):
     """The material's design map if it ships or is cached, else None (never builds one)."""
-    from stitchswitch.reduced.design_space import cache as map_cache, storage as map_io
+    from stitchswitch.reduced.design_space import cache as map_cache
+    from stitchswitch.reduced.design_space import storage as map_io
     from stitchswitch.reduced.model.material_io import material_hash
 
     if material == DEFAULT_MATERIAL:

@@ -15,8 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.preview3d import colours
 from stitchswitch.preview3d.camera import Camera, check_view, fit_camera
 

@@ -13,10 +13,8 @@ from __future__ import annotations
 import io
 import os
 
-import numpy as np
-
-from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.preview3d.profiles import PatchProfile
 
 FIGURE_FORMATS = (".png", ".svg")

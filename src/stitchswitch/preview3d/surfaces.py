@@ -34,8 +34,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.preview3d.profiles import PatchProfile
 from stitchswitch.files.revolution import surface_of_revolution
+from stitchswitch.preview3d.profiles import PatchProfile
 
 BLEND_START = 1.25
 RIM = 2.0

@@ -23,8 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM
 from stitchswitch.files.textio import csv_number, csv_records, read_text
+from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM
 
 __all__ = ["Measurement", "MeasuredData", "QUANTITIES", "REQUIRED_COLUMNS", "OPTIONAL_COLUMNS",
            "SPLITS", "MAX_LENGTH_MM", "load_measurements", "parse_measurements"]

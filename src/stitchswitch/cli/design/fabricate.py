@@ -6,9 +6,9 @@ import click
 
 from stitchswitch.cli import options
 from stitchswitch.layout.embroidery import export
-from stitchswitch.layout.garment.design_io import load_design
 from stitchswitch.layout.fabrication.fabricate import FabricateOptions, fabricate
 from stitchswitch.layout.fabrication.grouping.group import MODES
+from stitchswitch.layout.garment.design_io import load_design
 
 
 @click.command(cls=options.Command)

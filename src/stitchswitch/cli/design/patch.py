@@ -5,12 +5,13 @@ import click
 
 from stitchswitch.cli import options
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.embroidery import export, stitch_preview as preview
+from stitchswitch.layout.embroidery import export
+from stitchswitch.layout.embroidery import stitch_preview as preview
 from stitchswitch.layout.embroidery.hoops import choose_hoop
-from stitchswitch.layout.garment.design import CompositeSpec, PatchSpec
 from stitchswitch.layout.embroidery.patch_design import geometry_for
 from stitchswitch.layout.embroidery.patch_geometry import make_patch, parse_selection
 from stitchswitch.layout.embroidery.stitches import StitchParams, plan_stitches
+from stitchswitch.layout.garment.design import CompositeSpec, PatchSpec
 
 
 @click.command(cls=options.Command)

@@ -9,13 +9,12 @@ import time
 
 import click
 
-from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.cli import options
 from stitchswitch.executor import default_workers, make_executor
+from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.reduced.calibration import evolution as cal
 from stitchswitch.reduced.model.material_io import canonical_json, load_material, material_hash
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
-
 
 FREE = tuple(n for n in cal.PARAMS if n != cal.SCALE_PARAM)
 

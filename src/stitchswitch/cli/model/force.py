@@ -9,8 +9,12 @@ import pathlib
 import click
 
 from stitchswitch.cli import options
-from stitchswitch.reduced.design_space.force_model import (ForceFit, default_force_fit, fit_force_model,
-                                              load_force_csv)
+from stitchswitch.reduced.design_space.force_model import (
+    ForceFit,
+    default_force_fit,
+    fit_force_model,
+    load_force_csv,
+)
 from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM, Patch
 
 log = logging.getLogger(__name__)

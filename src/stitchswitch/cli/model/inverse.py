@@ -51,7 +51,8 @@ def inverse(height_mm, radius_mm, max_diameter_mm, min_fill, force_range, count,
     if not cands:
         click.echo(f"no design within {HEIGHT_TOL_MM} mm of the target was confirmed")
         return
-    head = f"{'#':>2} {'d_mm':>7} {'fill':>6} {'h_mm':>7} {'r_a_mm':>7} {'z_a_mm':>7} {'r_b_mm':>7} {'z_b_mm':>7} {'force_N':>8}"
+    head = (f"{'#':>2} {'d_mm':>7} {'fill':>6} {'h_mm':>7} {'r_a_mm':>7} {'z_a_mm':>7} {'r_b_mm':>7} "
+            f"{'z_b_mm':>7} {'force_N':>8}")
     click.echo(head)
     for k, c in enumerate(cands, 1):
         click.echo(f"{k:>2} {c['d_mm']:7.2f} {c['fill']:6.3f} {c['h_mm']:7.3f} {c['r_a_mm']:7.2f} "

@@ -10,7 +10,9 @@ import click
 
 from stitchswitch.cli import options
 from stitchswitch.executor import default_workers
-from stitchswitch.reduced.design_space import smoothness as map_check, storage as map_io, precompute as build_map
+from stitchswitch.reduced.design_space import precompute as build_map
+from stitchswitch.reduced.design_space import smoothness as map_check
+from stitchswitch.reduced.design_space import storage as map_io
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 

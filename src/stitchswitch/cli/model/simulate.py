@@ -8,8 +8,8 @@ import math
 import click
 import numpy as np
 
-from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.cli import options
+from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.reduced.model.material_io import load_material, material_hash
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 from stitchswitch.reduced.solvers.solve import Solution, solve

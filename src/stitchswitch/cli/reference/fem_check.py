@@ -6,10 +6,10 @@ import pathlib
 
 import click
 
-from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.cli import options
 from stitchswitch.fem_reference.check import DEFAULT_DESIGNS, fem_check, table
 from stitchswitch.fem_reference.continuation import DEFAULT_START, STARTS
+from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 

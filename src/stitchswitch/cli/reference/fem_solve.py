@@ -32,8 +32,8 @@ def fem_solve(diameter_mm, fill, material_path, elements, hoop_bending, poisson,
     keypoints; optionally export the 3D surface through meshio."""
     from stitchswitch.fem_reference.continuation import solve_reference
     from stitchswitch.fem_reference.shell import ShellModel
-    from stitchswitch.reduced.model.keypoints import keypoints_from_profile
     from stitchswitch.files.revolution import surface_of_revolution, write_mesh
+    from stitchswitch.reduced.model.keypoints import keypoints_from_profile
 
     patch = Patch(diameter_mm, fill)
     material = DEFAULT_MATERIAL if material_path is None else load_material(material_path)

@@ -7,8 +7,8 @@ import pathlib
 
 import click
 
-from stitchswitch.files.atomic import atomic_write_bytes, atomic_write_text
 from stitchswitch.cli import options
+from stitchswitch.files.atomic import atomic_write_bytes, atomic_write_text
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 

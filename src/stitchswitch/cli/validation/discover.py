@@ -6,8 +6,8 @@ import sys
 
 import click
 
-from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.cli import options
+from stitchswitch.files.atomic import atomic_write_text
 
 #: The built-in demo: data from the model with hardening switched on (this strength), the
 #: workflow started from the model without it.
@@ -66,9 +66,14 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
     """
     from stitchswitch.executor import default_workers, make_executor
     from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
-    from stitchswitch.validation.discovery.workflow import DiscoveryConfig, discover as run, stage_count
-    from stitchswitch.validation.discovery.report import (check_discovery_dir, report_dict,
-                                                          report_json, write_discovery_report)
+    from stitchswitch.validation.discovery.report import (
+        check_discovery_dir,
+        report_dict,
+        report_json,
+        write_discovery_report,
+    )
+    from stitchswitch.validation.discovery.workflow import DiscoveryConfig, stage_count
+    from stitchswitch.validation.discovery.workflow import discover as run
     from stitchswitch.validation.measured import load_measurements, parse_measurements
 
     given = [x for x in (data_arg, data_opt) if x is not None]

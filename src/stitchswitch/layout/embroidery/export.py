@@ -30,8 +30,8 @@ from typing import Callable
 
 import numpy as np
 
-from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.layout.embroidery import stitches as st
 from stitchswitch.layout.embroidery.hoops import Hoop, choose_hoop
 

@@ -20,8 +20,8 @@ from functools import lru_cache
 from importlib import resources
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.embroidery.hoop_spec import Hoop
 from stitchswitch.files.textio import read_text
+from stitchswitch.layout.embroidery.hoop_spec import Hoop
 
 FORMAT = "stitchswitch machines"
 VERSION = 1

@@ -7,8 +7,8 @@ import pathlib
 
 import numpy as np
 
-from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.layout.embroidery import stitches as st
 
 

@@ -29,17 +29,17 @@ import numpy as np
 
 from stitchswitch import __version__
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.embroidery import export
 from stitchswitch.files.outdir import check_outdir, write_outdir
-from stitchswitch.layout.fabrication.sheet import html_page, markdown
+from stitchswitch.layout.embroidery import export
+from stitchswitch.layout.embroidery.machines import catalogue
+from stitchswitch.layout.embroidery.stitches import StitchParams
 from stitchswitch.layout.fabrication.grouping.footprints import stretch
 from stitchswitch.layout.fabrication.grouping.group import MODES, group
+from stitchswitch.layout.fabrication.grouping.result import Grouping
 from stitchswitch.layout.fabrication.layout_plot import alignment_marks, hooping_figure, overview_figure
 from stitchswitch.layout.fabrication.order import StitchingOrder, order_hoopings
 from stitchswitch.layout.fabrication.plan import plan_hooping
-from stitchswitch.layout.fabrication.grouping.result import Grouping
-from stitchswitch.layout.embroidery.machines import catalogue
-from stitchswitch.layout.embroidery.stitches import StitchParams
+from stitchswitch.layout.fabrication.sheet import html_page, markdown
 
 GENERATOR = "stitchswitch fabricate"
 

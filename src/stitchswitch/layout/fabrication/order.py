@@ -25,9 +25,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from stitchswitch.layout.embroidery.ordering import visiting_order
 from stitchswitch.layout.fabrication.grouping.candidates import ring_overlap
 from stitchswitch.layout.fabrication.grouping.result import Hooping
-from stitchswitch.layout.embroidery.ordering import visiting_order
 
 EXACT_MAX = 14
 

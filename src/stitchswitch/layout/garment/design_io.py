@@ -16,11 +16,20 @@ import os
 
 import numpy as np
 
-from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.garment.design import (STATES, VERSION, CompositeSpec, Design, MachineSpec,
-                                        MaterialRef, PatchSpec, PieceSpec, Threads)
+from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.files.textio import read_text
+from stitchswitch.layout.garment.design import (
+    STATES,
+    VERSION,
+    CompositeSpec,
+    Design,
+    MachineSpec,
+    MaterialRef,
+    PatchSpec,
+    PieceSpec,
+    Threads,
+)
 
 __all__ = ["load_design", "save_design", "design_from_dict", "design_to_dict", "dumps_design",
            "validate_design", "machine_hoops", "machine_names"]

@@ -48,7 +48,8 @@ def map_for(material: Material = DEFAULT_MATERIAL, workers: int = 1, progress=No
     ``coarse``, a material whose full map is neither shipped nor cached gets the coarse grid
     instead (``COARSE_*``, 198 solves, a few seconds, no smoothness check; cached too): enough
     for a figure."""
-    from stitchswitch.reduced.design_space import storage as map_io, precompute
+    from stitchswitch.reduced.design_space import precompute
+    from stitchswitch.reduced.design_space import storage as map_io
     from stitchswitch.reduced.model.material_io import material_hash
 
     if material == DEFAULT_MATERIAL:

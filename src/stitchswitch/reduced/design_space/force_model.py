@@ -34,8 +34,8 @@ from importlib import resources
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM
 from stitchswitch.files.textio import csv_number, csv_records, read_text
+from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM
 
 __all__ = ["ForceModel", "ForceFit", "ForceSample", "fit_force_model", "load_force_csv",
            "parse_force_csv", "default_force_fit", "default_force_csv_path", "FEATURES"]

@@ -22,8 +22,15 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from stitchswitch.reduced.design_space.design_map import (FLAG_BRANCH, FLAG_NAMES, FLAG_ONSET, FLAG_SMOOTH,
-                                             FLAG_UNEXPLAINED, FLAG_UNRESOLVED, DesignMap)
+from stitchswitch.reduced.design_space.design_map import (
+    FLAG_BRANCH,
+    FLAG_NAMES,
+    FLAG_ONSET,
+    FLAG_SMOOTH,
+    FLAG_UNEXPLAINED,
+    FLAG_UNRESOLVED,
+    DesignMap,
+)
 from stitchswitch.reduced.model.keypoints import FLAT_H_MM
 from stitchswitch.reduced.model.params import Patch
 

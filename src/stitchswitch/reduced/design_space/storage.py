@@ -17,8 +17,8 @@ import os
 
 import numpy as np
 
-from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.reduced.design_space.design_map import KEYPOINTS, DesignMap
 
 FORMAT = "stitchswitch-design-map-1"

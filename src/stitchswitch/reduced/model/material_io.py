@@ -19,10 +19,10 @@ import os
 from dataclasses import MISSING, fields
 from importlib import resources
 
-from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.model.params import Material
+from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.files.textio import read_text
+from stitchswitch.reduced.model.params import Material
 
 __all__ = ["load_material", "save_material", "material_hash", "canonical_json",
            "default_material_path", "material_from_json"]

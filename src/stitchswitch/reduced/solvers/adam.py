@@ -38,8 +38,8 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model import assembly
-from stitchswitch.reduced.solvers.constraints import kkt_residual, project
 from stitchswitch.reduced.model.discretization import Grid
+from stitchswitch.reduced.solvers.constraints import kkt_residual, project
 from stitchswitch.reduced.solvers.newton import NewtonResult
 
 #: Domain safeguard: how many times a step that leaves the energy's domain is halved.

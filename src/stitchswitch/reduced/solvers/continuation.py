@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from stitchswitch.reduced.solvers import newton
 from stitchswitch.reduced.model.discretization import Grid
+from stitchswitch.reduced.solvers import newton
 
 INITIAL_STEP = 0.25
 MIN_STEP = 1.0 / 256

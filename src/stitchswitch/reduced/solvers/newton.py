@@ -34,9 +34,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from stitchswitch.reduced.model import assembly
+from stitchswitch.reduced.model.discretization import Grid
 from stitchswitch.reduced.solvers import banded
 from stitchswitch.reduced.solvers.constraints import drop_gradient, kkt_residual, z_from_drops
-from stitchswitch.reduced.model.discretization import Grid
 
 ARMIJO = 1e-4
 MAX_BACKTRACK = 60

@@ -7,9 +7,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.reduced.solvers import continuation, newton
 from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, SOLVERS, Material, Patch
+from stitchswitch.reduced.solvers import continuation, newton
 
 #: Certificate threshold: the solution is reported converged only if the max-norm of the
 #: projected gradient (dimensionless energy per dR) is at most this.

@@ -1,9 +1,9 @@
 """Keypoints of many (design, parameter vector) pairs: cached, optionally in parallel.
 
 Function values are cold certified solves (``effects.solve_effects`` from the released state,
-the same deterministic solve as ``stitchswitch simulate``, at most ``MAX_NEWTON`` iterations): a prediction depends only on the
-design and the parameters, so it is cached, and a fit or a cross-validation fold revisiting a
-point costs nothing.
+the same deterministic solve as ``stitchswitch simulate``, at most ``MAX_NEWTON`` iterations): a
+prediction depends only on the design and the parameters, so it is cached, and a fit or a
+cross-validation fold revisiting a point costs nothing.
 
 Finite-difference Jacobians need solves at points 1-2 % away from a centre that was just solved.
 Those are warm-started from the centre's equilibrium of the same design (``solve(...,

@@ -17,8 +17,8 @@ import os
 from stitchswitch import __version__
 from stitchswitch.files.outdir import check_outdir, previous_output, write_outdir
 from stitchswitch.reduced.model.material_io import material_hash
-from stitchswitch.validation.discovery.figures import FIGURES, all_figures
 from stitchswitch.validation.discovery.effects import get_effect
+from stitchswitch.validation.discovery.figures import FIGURES, all_figures
 from stitchswitch.validation.measured import QUANTITIES
 from stitchswitch.validation.report import _CSS, _jsonable, provenance_statement
 
@@ -130,7 +130,7 @@ def _story(rep: dict) -> dict:
         sig = top["signature"]
         best_q = max(QUANTITIES, key=lambda q: abs(sig["per_quantity"][q]))
         verdict = (f"Missing effect: **{name}** ({get_effect(name).summary}). " + rep["decision"] +
-                   f". Fitted: " + ", ".join(f"{k} = {v:.4g}" for k, v in
+                   ". Fitted: " + ", ".join(f"{k} = {v:.4g}" for k, v in
                                              rep["effect_parameters"].items()) + ".")
         evidence = (f"Why it matches: {unabs(sig['unabsorbed'])} of its signature cannot be "
                     f"absorbed by recalibrating the coefficients, and that part correlates with "

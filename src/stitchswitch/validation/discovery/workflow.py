@@ -33,14 +33,13 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.params import Material
-from stitchswitch.validation.discovery.cv import (cross_validate, f_test, fold_labels,
-                                                  sign_flip_test)
+from stitchswitch.validation.discovery.cv import cross_validate, f_test, fold_labels, sign_flip_test
+from stitchswitch.validation.discovery.effects import LIBRARY, get_effect
 from stitchswitch.validation.discovery.evaluate import Evaluator
 from stitchswitch.validation.discovery.fit import fit, fit_effect, jacobian
 from stitchswitch.validation.discovery.residuals import residual_analysis
 from stitchswitch.validation.discovery.signature import explain, signature
 from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
-from stitchswitch.validation.discovery.effects import LIBRARY, get_effect
 from stitchswitch.validation.measured import QUANTITIES, MeasuredData
 from stitchswitch.validation.metrics import split_metrics
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import shapely
 
-from stitchswitch.layout.check.violation import Violation
 from stitchswitch.layout.check.rules.footprint import garment_radius_mm
+from stitchswitch.layout.check.violation import Violation
 
 RULE = "piece-edge"
 

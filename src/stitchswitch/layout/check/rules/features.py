@@ -20,8 +20,8 @@ import math
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.check.violation import Violation
 from stitchswitch.layout.check.rules.geometry import geometry
+from stitchswitch.layout.check.violation import Violation
 
 SQRT3 = math.sqrt(3.0)
 NO_GAP_MM = 0.05

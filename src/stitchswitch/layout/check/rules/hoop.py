@@ -3,9 +3,9 @@ into the design's chosen hoop, or into the machine's largest hoop when none is c
 from __future__ import annotations
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.check.rules.footprint import hoop_extent_mm
 from stitchswitch.layout.check.violation import Violation
 from stitchswitch.layout.garment.design_io import machine_hoops
-from stitchswitch.layout.check.rules.footprint import hoop_extent_mm
 
 RULE = "hoop-fit"
 DEFAULT_MARGIN_MM = 5.0        # when the hoop record carries no margin

@@ -32,8 +32,8 @@ import numpy as np
 import shapely
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.fabrication.grouping import bitsets
 from stitchswitch.layout.embroidery.hoop_spec import Hoop
+from stitchswitch.layout.fabrication.grouping import bitsets
 
 TOL_MM = 1e-9
 

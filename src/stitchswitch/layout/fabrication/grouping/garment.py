@@ -26,7 +26,8 @@ import time
 
 import numpy as np
 
-from stitchswitch.layout.fabrication.grouping import candidates as hoop_candidates, greedy as hoop_greedy
+from stitchswitch.layout.fabrication.grouping import candidates as hoop_candidates
+from stitchswitch.layout.fabrication.grouping import greedy as hoop_greedy
 from stitchswitch.layout.fabrication.grouping.footprints import arrays
 from stitchswitch.layout.fabrication.grouping.mip import solve_cover
 from stitchswitch.layout.fabrication.grouping.result import Grouping, Hooping, SolveReport

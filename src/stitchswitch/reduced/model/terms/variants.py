@@ -11,8 +11,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from stitchswitch.reduced.model.terms import (bending, circumferential, compression, hardening,
-                                        radial)
+from stitchswitch.reduced.model.terms import bending, circumferential, compression, hardening, radial
 
 
 def _node_average(a: np.ndarray) -> np.ndarray:
