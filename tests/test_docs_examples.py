@@ -69,6 +69,7 @@ def test_guide_images_exist():
         assert (DOCS / name).is_file(), name
 
 
+@pytest.mark.slow
 def test_guide_examples_run(tmp_path):
     for block in blocks(GUIDE.read_text()):
         for command, expected, code in commands(block):
