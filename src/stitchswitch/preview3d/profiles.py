@@ -45,14 +45,13 @@ class PatchProfile:
 
 def available_map(material: Material):
     """The material's design map if it ships or is cached, else None (never builds one)."""
-    from stitchswitch.reduced.design_space import cache as map_cache
-    from stitchswitch.reduced.design_space import storage as map_io
+    from stitchswitch.reduced.design_space import cache, storage
     from stitchswitch.reduced.model.material_io import material_hash
 
     if material == DEFAULT_MATERIAL:
-        return map_cache.default_map()
-    path = map_cache.cache_dir() / "maps" / f"{material_hash(material)}.npz"
-    return map_io.load_map(path) if path.exists() else None
+        return cache.default_map()
+    path = cache.cache_dir() / "maps" / f"{material_hash(material)}.npz"
+    return storage.load_map(path) if path.exists() else None
 
 
 def _in_domain(dmap, d: float, p: float) -> bool:

@@ -4,7 +4,7 @@ Each patch's geometry (``patch_design.geometry_for``, centred at the origin, str
 turned with the hoop (a hoop turned by 90 degrees on the piece sees the piece turned by -90)
 and moved to the patch's position in hoop coordinates. Sewing order: one block per thread
 colour, top threads first, then conductive threads (each colour change is one ``COLOR_CHANGE``
-record); inside a block the patches in the hooping's order (``hoop_order``), each patch's
+record); inside a block the patches in the hooping's order (``order``), each patch's
 triangles in ``stitches.plan_stitches`` order. A patch with conductive triangles therefore
 adds a colour change: the conductive block, which the paper sews with conductive thread in the
 bobbin (section 6, Fig. 13).

@@ -20,7 +20,7 @@ def _listing(values) -> str:
 
 def select_pieces(pieces, size: str | None = None, names=None, source: str | None = None
                   ) -> tuple[PieceSpec, ...]:
-    """The design pieces of ``pieces`` (``dxf_import.Piece``) of one size, optionally only those
+    """The design pieces of ``pieces`` (``dxf.reader.Piece``) of one size, optionally only those
     named in ``names`` (in file order). Several sizes and no ``size``, an unknown size or an
     unknown name raise ``InvalidInputError`` listing what the file has."""
     pieces = list(pieces)

@@ -48,24 +48,23 @@ def map_for(material: Material = DEFAULT_MATERIAL, workers: int = 1, progress=No
     ``coarse``, a material whose full map is neither shipped nor cached gets the coarse grid
     instead (``COARSE_*``, 198 solves, a few seconds, no smoothness check; cached too): enough
     for a figure."""
-    from stitchswitch.reduced.design_space import precompute
-    from stitchswitch.reduced.design_space import storage as map_io
+    from stitchswitch.reduced.design_space import precompute, storage
     from stitchswitch.reduced.model.material_io import material_hash
 
     if material == DEFAULT_MATERIAL:
         return default_map()
     path = cache_dir() / "maps" / f"{material_hash(material)}.npz"
     if path.exists():
-        return map_io.load_map(path)
+        return storage.load_map(path)
     if coarse:
         path = cache_dir() / "maps" / f"{material_hash(material)}-coarse.npz"
         if path.exists():
-            return map_io.load_map(path)
+            return storage.load_map(path)
         # no smoothness check: on a 5 mm x 0.05 grid the 2 % neighbour test does not apply
         dmap = precompute.build(material, COARSE_DIAMETERS_MM, COARSE_FILLS, workers=workers,
                                 progress=progress, check=False)
     else:
         dmap = precompute.build(material, workers=workers, progress=progress)
     path.parent.mkdir(parents=True, exist_ok=True)
-    map_io.save_map(dmap, path)
+    storage.save_map(dmap, path)
     return dmap

@@ -23,7 +23,7 @@ from stitchswitch.reduced.model.params import Material
 KEYPOINTS = ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm")
 
 #: Codes of ``DesignMap.flags``: how a grid point that fails the neighbour-mean smoothness
-#: test is explained (see ``map_check``).
+#: test is explained (see ``smoothness``).
 FLAG_SMOOTH, FLAG_BRANCH, FLAG_ONSET, FLAG_UNRESOLVED, FLAG_UNEXPLAINED = 0, 1, 2, 3, 4
 FLAG_NAMES = {FLAG_SMOOTH: "smooth", FLAG_BRANCH: "branch change",
               FLAG_ONSET: "buckling onset", FLAG_UNRESOLVED: "under-resolved",

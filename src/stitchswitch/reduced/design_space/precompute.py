@@ -70,7 +70,7 @@ def build(material: Material = DEFAULT_MATERIAL, diameters_mm=DEFAULT_DIAMETERS_
     (default); False: every point a cold solve.
 
     With ``check`` the smoothness test runs and unsmooth points are explained and flagged
-    (``map_check.classify``)."""
+    (``smoothness.classify``)."""
     from stitchswitch.reduced.model.material_io import material_hash
 
     d = np.asarray(diameters_mm, dtype=float)

@@ -8,7 +8,7 @@ by s/2 on every side: that is the container ``circle_packing`` fills.
 Formulation (two stages, documented in docs/fabrication.md):
 
 1. *Hoop loads* (columns): sets of patches with positions that fit one hoop type, produced by
-   first-fit decreasing opening every hoop type (``hoop_greedy``; with and without shrinking
+   first-fit decreasing opening every hoop type (``greedy``; with and without shrinking
    each hoop to the smallest type that holds its patches) and by column generation: the LP
    relaxation of stage 2 (cvxpy + HiGHS) gives dual prices pi_i of the patches; for every hoop
    type a load is built greedily in the order of pi_i / area_i (and of pi_i), and added when
@@ -18,7 +18,7 @@ Formulation (two stages, documented in docs/fabrication.md):
    depend on the machine's speed). Every load is made maximal by adding whatever else still
    fits (a subset of a load is a load too). When the proven lower bound below already equals
    the first-fit count, column generation is skipped: no grouping can use fewer hoops.
-2. *Set cover MIP* over the loads (``hoop_mip``): fewest hoopings, then fewest hoop types, then
+2. *Set cover MIP* over the loads (``mip``): fewest hoopings, then fewest hoop types, then
    smaller hoops (w3 = the hoop's rank by field area). A patch held by two chosen loads stays in
    the larger one. Each hooping's group of patches is centred in the hoop.
 
@@ -40,7 +40,7 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.fabrication.grouping import circle_packing as cpk
-from stitchswitch.layout.fabrication.grouping import greedy as hoop_greedy
+from stitchswitch.layout.fabrication.grouping import greedy
 from stitchswitch.layout.fabrication.grouping.mip import solve_cover
 from stitchswitch.layout.fabrication.grouping.result import Grouping, Hooping, SolveReport
 
@@ -206,12 +206,12 @@ def group_free(feet, hoops, spacing_mm: float = 10.0, time_limit_s: float | None
     by_size = list(np.lexsort((np.arange(n), -radii)))
     loads = _Loads(n)
     roomy = max(range(len(hoops)), key=lambda t: (min(conts[t]), conts[t][0] * conts[t][1]))
-    ffd = hoop_greedy.first_fit_decreasing_free(radii, conts, roomy)
+    ffd = greedy.first_fit_decreasing_free(radii, conts, roomy)
     greedy_sols = [_add_solution(loads, ffd, radii, conts, by_size)]
     for t in range(len(hoops)):
         if all(2 * r <= min(conts[t]) + 1e-9 for r in radii):
             for shrink in (True, False):        # unshrunk: loads of one hoop type only
-                sol = hoop_greedy.first_fit_decreasing_free(radii, conts, t, shrink)
+                sol = greedy.first_fit_decreasing_free(radii, conts, t, shrink)
                 greedy_sols.append(_add_solution(loads, sol, radii, conts, by_size))
     bound = lower_bound(radii, conts)
     cut = False

@@ -1,14 +1,14 @@
 """Garment mode: patches stay where they are on the garment; choose hoop placements.
 
 Every patch must lie, with its whole stretched footprint, inside the field-minus-margin of one
-hooping, and every hoop's frame must clamp fabric all round (``hoop_candidates``). Over the
-candidate placements this is a set cover (``hoop_mip``) with the lexicographic objective
+hooping, and every hoop's frame must clamp fabric all round (``candidates``). Over the
+candidate placements this is a set cover (``mip``) with the lexicographic objective
 
     1. fewest hoopings,  2. fewest hoop types,  3. least frame overlap,
 
 where the overlap of a placement is the number of other patches of the piece that its frame
 ring touches (each one is a place where the frame may press a stitched patch, depending on the
-order: ``hoop_order``); last come smaller hoops. A placement costs w1 + T * overlap + rank, with
+order: ``layout.fabrication.order``); last come smaller hoops. A placement costs w1 + T * overlap + rank, with
 T hoop types and rank the hoop's rank by field area (0 = smallest); w2 = n^2 T + 1 per hoop type
 and w1 = T w2 + n^2 T + 1 (n patches): the lower terms of at most n hoopings stay below one unit
 of the term above, so one hooping more always costs more than anything the lower objectives
@@ -16,7 +16,7 @@ can save, and so on down.
 
 With a time limit, candidate generation and the greedy methods run first and HiGHS gets the
 rest. If HiGHS stops without a solution at least as good as the best greedy one (greedy set
-cover or first-fit decreasing, ``hoop_greedy``), that greedy solution is returned and the
+cover or first-fit decreasing, ``greedy``), that greedy solution is returned and the
 report says "greedy-fallback". The number of hoopings is then never above the greedy one's.
 """
 from __future__ import annotations
@@ -26,8 +26,7 @@ import time
 
 import numpy as np
 
-from stitchswitch.layout.fabrication.grouping import candidates as hoop_candidates
-from stitchswitch.layout.fabrication.grouping import greedy as hoop_greedy
+from stitchswitch.layout.fabrication.grouping import candidates, greedy
 from stitchswitch.layout.fabrication.grouping.footprints import arrays
 from stitchswitch.layout.fabrication.grouping.mip import solve_cover
 from stitchswitch.layout.fabrication.grouping.result import Grouping, Hooping, SolveReport
@@ -83,19 +82,19 @@ def _hoopings(cands, chosen, feet) -> tuple[Hooping, ...]:
 def group_garment(feet, pieces, hoops, time_limit_s: float | None = None) -> Grouping:
     """Hoopings for footprints on stretched pieces (see the module docstring)."""
     t0 = time.perf_counter()
-    cands = hoop_candidates.generate(tuple(feet), tuple(pieces), tuple(hoops))
+    cands = candidates.generate(tuple(feet), tuple(pieces), tuple(hoops))
     n = len(feet)
     w1, w2 = weights(n, len(hoops))
     diam = [f.diameter_mm for f in feet]
-    greedy = {"greedy set cover": hoop_greedy.greedy_cover(cands),
-              "first-fit decreasing": hoop_greedy.first_fit_decreasing_garment(cands, diam)}
-    ffd_count = len(greedy["first-fit decreasing"])
-    best_name = min(greedy, key=lambda k: (_key(cands, greedy[k]), k))
+    baselines = {"greedy set cover": greedy.greedy_cover(cands),
+                 "first-fit decreasing": greedy.first_fit_decreasing_garment(cands, diam)}
+    ffd_count = len(baselines["first-fit decreasing"])
+    best_name = min(baselines, key=lambda k: (_key(cands, baselines[k]), k))
     left = None if time_limit_s is None else max(0.05, time_limit_s - (time.perf_counter() - t0))
     cost = w1 + len(hoops) * cands.overlap + _rank(cands)
     sol = solve_cover(cands.holds, cost, cands.hoop_index, w2, left)
-    use_mip = sol.chosen is not None and _key(cands, sol.chosen) <= _key(cands, greedy[best_name])
-    chosen = sol.chosen if use_mip else greedy[best_name]
+    use_mip = sol.chosen is not None and _key(cands, sol.chosen) <= _key(cands, baselines[best_name])
+    chosen = sol.chosen if use_mip else baselines[best_name]
     bound = 1
     if sol.optimal:
         bound = len(chosen)

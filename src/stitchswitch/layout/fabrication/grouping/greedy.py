@@ -1,6 +1,6 @@
 """Greedy hoop grouping: the baselines and the fallback of the MIP (docs/fabrication.md).
 
-Garment mode works on the candidate placements of ``hoop_candidates`` (columns):
+Garment mode works on the candidate placements of ``candidates`` (columns):
 
 * ``greedy_cover``: the classic greedy set cover. Repeatedly take the candidate holding the most
   patches not yet held; ties: less frame overlap, smaller hoop, lower index.

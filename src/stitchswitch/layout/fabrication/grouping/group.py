@@ -1,8 +1,8 @@
 """Hoop grouping, both modes behind one call (docs/fabrication.md).
 
 ``group(feet, pieces, hoops, mode)``: ``"garment"`` keeps every patch where it is on its piece
-and chooses hoop placements (``hoop_garment``); ``"free"`` packs the patches into hoops of
-separate fabric (``hoop_free``). Both state a set cover in cvxpy, solve it with HiGHS, report
+and chooses hoop placements (``garment``); ``"free"`` packs the patches into hoops of
+separate fabric (``free``). Both state a set cover in cvxpy, solve it with HiGHS, report
 the gap and the time, and fall back to a greedy method when a time limit stops HiGHS first.
 """
 from __future__ import annotations

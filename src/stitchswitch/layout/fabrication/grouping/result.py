@@ -50,7 +50,7 @@ class SolveReport:
     ``status``: HiGHS's status through cvxpy; ``optimal``: proven optimal over the candidates;
     ``mip_gap``: HiGHS's relative gap (None if it has no solution); ``hoopings_lower_bound``: a
     proven lower bound on the number of hoopings (garment mode: from HiGHS's dual bound over
-    the candidates; free mode: the geometric bound, see ``hoop_free``); ``greedy_hoopings``:
+    the candidates; free mode: the geometric bound, see ``free``); ``greedy_hoopings``:
     first-fit-decreasing on the same problem; ``solve_s``: wall time of the whole grouping."""
     mode: str
     method: str

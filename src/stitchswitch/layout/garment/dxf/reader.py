@@ -2,7 +2,7 @@
 
 Files are read with ezdxf's recover mode; what it repaired is logged as a warning and kept on
 the returned list as `.repairs`. AAMA/ASTM pattern files (Gerber AccuMark, CLO) are read block by
-block (dxf_aama); any other DXF contributes every closed contour in model space (dxf_generic).
+block (``aama``); any other DXF contributes every closed contour in model space (``generic``).
 """
 from __future__ import annotations
 
