@@ -17,7 +17,7 @@ import os
 
 import numpy as np
 
-from stitchswitch.errors import InvalidInputError
+from stitchswitch.errors import InvalidInputError, StitchSwitchError
 from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.reduced.design_space.design_map import KEYPOINTS, DesignMap
 
@@ -30,7 +30,7 @@ def _encode(x: np.ndarray) -> np.ndarray:
     q = np.round(np.asarray(x, dtype=float) / PROFILE_QUANTUM_MM).astype(np.int64)
     d2 = np.diff(np.diff(q, axis=-1, prepend=0), axis=-1, prepend=0)
     if np.any(np.abs(d2) > np.iinfo(np.int32).max):
-        raise ValueError("profile too large to encode")
+        raise StitchSwitchError(f"a profile is too large to store at {PROFILE_QUANTUM_MM} mm resolution")
     return d2.astype(np.int32)
 
 

@@ -7,6 +7,8 @@ from numba import njit
 from scipy.linalg import eig_banded
 from scipy.linalg.lapack import dpbtrf, dpbtrs
 
+from stitchswitch.errors import StitchSwitchError
+
 
 @njit(cache=True)
 def restrict(hb, dof_map, n_red):
@@ -58,7 +60,7 @@ def solve(factor: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """Solve with a factor from ``cholesky`` (LAPACK dpbtrs)."""
     x, info = dpbtrs(factor, rhs, lower=1)
     if info != 0:
-        raise ValueError(f"dpbtrs failed with info={info}")
+        raise StitchSwitchError(f"banded solve: LAPACK dpbtrs failed with info={info}")
     return x
 
 
