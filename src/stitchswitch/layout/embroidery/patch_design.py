@@ -14,8 +14,11 @@ with its own fill:
   area of the outer boundary minus the core cells.
 
 Within a region every triangle is scaled about its centroid by one common factor, solved so
-that the region's stitched area (after clipping to the outer boundary) meets its target, as in
-``patch_geometry`` (whose plain circular patch is exactly the no-composite, no-outline case).
+that the region's stitched area (after clipping to the outer boundary) meets its target: the
+pipeline ``tessellation.fit_to_fill`` of the plain circular patch (``patch_geometry.make_patch``,
+which a spec with neither composite nor outline is). The piece areas here are those of the
+stitched polygons (arcs as chords).
+
 A triangle clipped by a non-convex outline can become non-convex or split; it is then cut into
 convex parts (constrained Delaunay), because the fill stitches need convex pieces.
 """
@@ -25,13 +28,19 @@ import math
 
 import numpy as np
 import shapely
-from scipy.optimize import brentq
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery import tessellation as tess
-from stitchswitch.layout.embroidery.patch_geometry import PatchGeometry, make_patch, parse_selection
+from stitchswitch.layout.embroidery.patch_geometry import (
+    MIN_PIECE_AREA_MM2,
+    PatchGeometry,
+    conductive_mask,
+    make_patch,
+    parse_selection,
+)
 
-MIN_PIECE_AREA_MM2 = 0.1
+#: the scale search starts just above 0: three coincident points are no polygon for shapely
+_LOWEST_SCALE = 1e-9
 
 
 def geometry_for(spec, resolution_mm: float = 5.0) -> PatchGeometry:
@@ -49,9 +58,8 @@ def geometry_for(spec, resolution_mm: float = 5.0) -> PatchGeometry:
         _check_outline(spec, np.asarray(outline, dtype=float), radius, composite)
         clip = _PolygonClip(shapely.Polygon(np.asarray(outline, dtype=float)))
     else:
-        clip = _DiskClip(radius)
-    tris = tess.lattice_triangles(radius, resolution_mm)
-    tris = tris[clip.overlap(tris) > 1e-12 * resolution_mm ** 2]
+        clip = tess.DiskClip(radius)
+    tris = tess.candidates(clip, radius, resolution_mm)
     centroids = tris.mean(axis=1)
     core = np.zeros(len(tris), dtype=bool)
     core_area = 0.0
@@ -62,32 +70,18 @@ def geometry_for(spec, resolution_mm: float = 5.0) -> PatchGeometry:
         if not core.any():
             raise InvalidInputError(f"patch {spec.id}: the core ({composite.core_diameter_mm:g} mm) "
                                     f"holds no triangle at resolution {resolution_mm:g} mm")
-    regions = [(~core, spec.fill * (clip.area - core_area))]
+    regions = [tess.Region(~core, spec.fill * (clip.area_mm2 - core_area))]
     if composite is not None:
-        regions.append((core, composite.core_fill * core_area))
-    scale = np.ones(len(tris))
-    keep = np.ones(len(tris), dtype=bool)
-    for mask, target in regions:
-        idx = np.flatnonzero(mask)
-        for _ in range(5):            # drop unstitchable slivers, then solve again
-            s = _solve_scale(tris[idx], clip, target)
-            small = clip.overlap(_scaled(tris[idx], s)) < MIN_PIECE_AREA_MM2
-            if not small.any():
-                break
-            keep[idx[small]] = False
-            idx = idx[~small]
-        scale[idx] = s
-    tris, scale, centroids = tris[keep], scale[keep], centroids[keep]
-    scaled = centroids[:, None, :] + scale[:, None, None] * (tris - centroids[:, None, :])
-    pieces, owner = clip.pieces(scaled)
-    areas = np.array([tess.polygon_area(p) for p in pieces])
-    lattice_centroids = centroids[owner]
-    mask = (np.zeros(len(pieces), dtype=bool) if selection is None
-            else selection.select(lattice_centroids, resolution_mm))
+        regions.append(tess.Region(core, composite.core_fill * core_area))
+    fitted = tess.fit_to_fill(tris, clip, regions, MIN_PIECE_AREA_MM2, _LOWEST_SCALE)
+    areas = np.array([tess.polygon_area(p) for p in fitted.pieces_mm])
+    lattice_centroids = fitted.centroids_mm[fitted.owner]
     return PatchGeometry(float(spec.diameter_mm), float(spec.fill),
-                         float(resolution_mm), float(np.max(scale)), lattice_centroids,
-                         tuple(pieces), mask, areas, outline_area_mm2=float(clip.area),
-                         piece_scale=scale[owner])
+                         float(resolution_mm), float(np.max(fitted.scale)), lattice_centroids,
+                         fitted.pieces_mm,
+                         conductive_mask(selection, lattice_centroids, resolution_mm),
+                         areas, outline_area_mm2=float(clip.area_mm2),
+                         piece_scale=fitted.scale[fitted.owner])
 
 
 def _check_outline(spec, outline: np.ndarray, radius: float, composite) -> None:
@@ -109,36 +103,13 @@ def _check_outline(spec, outline: np.ndarray, radius: float, composite) -> None:
                                 "is not inside the outline")
 
 
-def _scaled(tris: np.ndarray, s: float) -> np.ndarray:
-    c = tris.mean(axis=1, keepdims=True)
-    return c + s * (tris - c)
-
-
-def _solve_scale(tris: np.ndarray, clip, target: float) -> float:
-    f = lambda s: float(clip.overlap(_scaled(tris, s)).sum()) - target  # noqa: E731
-    if f(1.0) <= 0.0:
-        return 1.0
-    return brentq(f, 1e-9, 1.0, xtol=1e-12, rtol=1e-12)
-
-
-class _DiskClip:
-    def __init__(self, radius: float):
-        self.radius = radius
-        self.area = math.pi * radius * radius
-
-    def overlap(self, tris: np.ndarray) -> np.ndarray:
-        return tess.disk_overlap_area(tris, self.radius)
-
-    def pieces(self, tris: np.ndarray):
-        out = [tess.clip_to_disk(t, self.radius) for t in tris]
-        return out, np.arange(len(tris))
-
-
 class _PolygonClip:
+    """A simple polygon (the outline) as a ``tessellation.Clip``; overlaps by shapely."""
+
     def __init__(self, polygon):
         self.polygon = polygon
         shapely.prepare(polygon)
-        self.area = float(polygon.area)
+        self.area_mm2 = float(polygon.area)
 
     def overlap(self, tris: np.ndarray) -> np.ndarray:
         return shapely.area(shapely.intersection(shapely.polygons(tris), self.polygon))

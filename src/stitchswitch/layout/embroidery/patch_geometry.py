@@ -12,7 +12,8 @@ Rule for the triangles cut by the circle (docs/embroidery.md):
    (At p = 1, s is capped at 1: the dropped slivers are then the whole, reported, deficit.)
 
 Interior triangles are therefore exactly similar, scaled copies of the lattice triangles, and the
-fill holds for any resolution, not only in the limit of small triangles.
+fill holds for any resolution, not only in the limit of small triangles. Steps 2-4 are
+``tessellation.fit_to_fill``, which composite and outlined patches (``patch_design``) share.
 """
 from __future__ import annotations
 
@@ -20,13 +21,14 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery import tessellation as tess
 
 DIAMETER_RANGE_MM = (5.0, 360.0)
 RESOLUTION_RANGE_MM = (1.0, 30.0)
+#: pieces smaller than this cannot be stitched and are dropped (step 4 of the rule)
+MIN_PIECE_AREA_MM2 = 0.1
 
 
 # --- conductive selections ----------------------------------------------------------------
@@ -135,22 +137,19 @@ class PatchGeometry:
         return len(self.pieces_mm)
 
 
-def _scaled(tris: np.ndarray, s: float) -> np.ndarray:
-    c = tris.mean(axis=1, keepdims=True)
-    return c + s * (tris - c)
-
-
-def _solve_scale(tris: np.ndarray, radius: float, target: float) -> float:
-    f = lambda s: float(tess.disk_overlap_area(_scaled(tris, s), radius).sum()) - target  # noqa: E731
-    if f(1.0) <= 0.0:
-        return 1.0
-    return brentq(f, 0.0, 1.0, xtol=1e-12, rtol=1e-12)
+def conductive_mask(selection: Selection | None, centroids_mm: np.ndarray,
+                    resolution_mm: float) -> np.ndarray:
+    """The pieces (given by the centroids of their lattice triangles) in the conductive thread."""
+    if selection is None:
+        return np.zeros(len(centroids_mm), dtype=bool)
+    return selection.select(centroids_mm, resolution_mm)
 
 
 def make_patch(diameter_mm: float, fill: float, resolution_mm: float = 5.0,
                conductive: Selection | None = None,
-               min_piece_area_mm2: float = 0.1) -> PatchGeometry:
-    """Tessellate a circular patch of ``diameter_mm`` at ``fill`` (see the module docstring)."""
+               min_piece_area_mm2: float = MIN_PIECE_AREA_MM2) -> PatchGeometry:
+    """Tessellate a circular patch of ``diameter_mm`` at ``fill`` (see the module docstring);
+    the piece areas are the exact overlaps of the scaled triangles with the disk."""
     for name, v in (("diameter", diameter_mm), ("fill", fill), ("resolution", resolution_mm)):
         if not isinstance(v, (int, float)) or not math.isfinite(v):
             raise InvalidInputError(f"{name} {v!r} is not a finite number")
@@ -166,24 +165,15 @@ def make_patch(diameter_mm: float, fill: float, resolution_mm: float = 5.0,
         raise InvalidInputError(f"resolution {resolution_mm:g} mm is coarser than the "
                                 f"diameter {diameter_mm:g} mm: no tessellation")
     radius = diameter_mm / 2.0
-    target = fill * math.pi * radius ** 2
-    tris = tess.lattice_triangles(radius, resolution_mm)
-    s = _solve_scale(tris, radius, target)
-    for _ in range(5):   # drop unstitchable slivers, then solve again (converges in 1-2 rounds)
-        areas = tess.disk_overlap_area(_scaled(tris, s), radius)
-        keep = areas >= min_piece_area_mm2
-        if keep.all():
-            break
-        tris = tris[keep]
-        s = _solve_scale(tris, radius, target)
-    scaled = _scaled(tris, s)
-    pieces = tuple(tess.clip_to_disk(t, radius) for t in scaled)
-    areas = tess.disk_overlap_area(scaled, radius)
-    centroids = tris.mean(axis=1)
-    mask = (np.zeros(len(tris), dtype=bool) if conductive is None
-            else conductive.select(centroids, resolution_mm))
-    return PatchGeometry(float(diameter_mm), float(fill), float(resolution_mm), float(s),
-                         centroids, pieces, mask, areas)
+    disk = tess.DiskClip(radius)
+    tris = tess.candidates(disk, radius, resolution_mm)
+    whole = tess.Region(np.ones(len(tris), dtype=bool), fill * math.pi * radius ** 2)
+    fitted = tess.fit_to_fill(tris, disk, [whole], min_piece_area_mm2)
+    centroids = fitted.centroids_mm
+    return PatchGeometry(float(diameter_mm), float(fill), float(resolution_mm),
+                         fitted.region_scales[0], centroids, fitted.pieces_mm,
+                         conductive_mask(conductive, centroids, resolution_mm),
+                         disk.overlap(fitted.scaled_mm))
 
 
 def parse_selection(spec: str) -> Selection:

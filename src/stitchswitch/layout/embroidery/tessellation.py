@@ -1,14 +1,24 @@
-"""The regular tessellation of the plane by equilateral triangles, and circle clipping.
+"""The regular tessellation of the plane by equilateral triangles, its clipping to a region, and
+its scaling to a fill.
 
 Coordinates are hoop (stretched-fabric) coordinates in mm, x to the right, y up, origin at the
 patch centre (docs/embroidery.md). The lattice has a vertex at the origin and horizontal rows, so
 every triangle has one horizontal edge and the pattern has the six-fold symmetry of the patch.
+
+``fit_to_fill`` is the one pipeline every patch goes through (plain circles in
+``patch_geometry``, composite and outlined patches in ``patch_design``): the lattice triangles
+of each region are scaled about their centroids by the region's common factor, solved so that
+their area inside the clip region meets the region's target, slivers too small to stitch are
+dropped (and the factor solved again), and the scaled triangles are clipped to the region.
 """
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
+from scipy.optimize import brentq
 
 SQRT3 = math.sqrt(3.0)
 
@@ -137,3 +147,106 @@ def _contains_origin(poly: np.ndarray) -> bool:
         if (b[0] - a[0]) * (-a[1]) - (b[1] - a[1]) * (-a[0]) < 0:
             return False
     return True
+
+
+# --- clipping regions ------------------------------------------------------------------------
+
+class Clip(Protocol):
+    """The outer boundary a patch is clipped to."""
+    area_mm2: float
+
+    def overlap(self, polys: np.ndarray) -> np.ndarray:
+        """Area inside the region of each CCW convex polygon of ``polys`` (shape (n, k, 2))."""
+
+    def pieces(self, polys: np.ndarray) -> tuple[list[np.ndarray], np.ndarray]:
+        """The convex CCW pieces of ``polys`` inside the region, and the index of the polygon
+        each piece comes from."""
+
+
+@dataclass(frozen=True)
+class DiskClip:
+    """The disk of ``radius_mm`` about the origin, with exact overlap areas."""
+    radius_mm: float
+
+    @property
+    def area_mm2(self) -> float:
+        return math.pi * self.radius_mm * self.radius_mm
+
+    def overlap(self, polys: np.ndarray) -> np.ndarray:
+        return disk_overlap_area(polys, self.radius_mm)
+
+    def pieces(self, polys: np.ndarray) -> tuple[list[np.ndarray], np.ndarray]:
+        return [clip_to_disk(t, self.radius_mm) for t in polys], np.arange(len(polys))
+
+
+def candidates(clip: Clip, radius_mm: float, side_mm: float) -> np.ndarray:
+    """The lattice triangles (``lattice_triangles`` order) that overlap ``clip``, a region
+    inside the disk of ``radius_mm``."""
+    tris = lattice_triangles(radius_mm, side_mm)
+    return tris[clip.overlap(tris) > 1e-12 * side_mm ** 2]
+
+
+# --- scaling to a fill ------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Region:
+    """Candidate triangles (``mask``) sewn at one common scale factor, whose stitched area
+    inside the clip must be ``target_area_mm2``."""
+    mask: np.ndarray
+    target_area_mm2: float
+
+
+@dataclass(frozen=True)
+class FittedLattice:
+    """The candidates kept by ``fit_to_fill``, scaled and clipped."""
+    triangles_mm: np.ndarray            # (m, 3, 2) the kept lattice triangles, candidate order
+    scale: np.ndarray                   # (m,) the scale factor of each kept triangle
+    region_scales: tuple[float, ...]    # the common factor of each region, in ``regions`` order
+    scaled_mm: np.ndarray               # (m, 3, 2) each kept triangle scaled about its centroid
+    pieces_mm: tuple[np.ndarray, ...]   # convex CCW pieces: the scaled triangles clipped
+    owner: np.ndarray                   # (k,) the kept triangle each piece comes from
+
+    @property
+    def centroids_mm(self) -> np.ndarray:
+        """(m, 2) centroids of the kept lattice triangles (those of the scaled ones too)."""
+        return self.triangles_mm.mean(axis=1)
+
+
+def fit_to_fill(tris: np.ndarray, clip: Clip, regions: list[Region],
+                min_piece_area_mm2: float, lowest_scale: float = 0.0) -> FittedLattice:
+    """Scale each region's triangles by one factor s in [``lowest_scale``, 1] so that their
+    area inside ``clip`` is the region's target (s = 1 if even the whole triangles fall short),
+    drop the pieces under ``min_piece_area_mm2`` (they cannot be stitched) and solve again, so
+    that the target holds for what is sewn; then clip the scaled triangles."""
+    keep = np.ones(len(tris), dtype=bool)
+    scale = np.ones(len(tris))
+    region_scales = []
+    for region in regions:
+        idx = np.flatnonzero(region.mask)
+        s = _solve_scale(tris[idx], clip, region.target_area_mm2, lowest_scale)
+        for _ in range(5):   # converges in 1-2 rounds
+            small = clip.overlap(_scaled(tris[idx], s)) < min_piece_area_mm2
+            if not small.any():
+                break
+            keep[idx[small]] = False
+            idx = idx[~small]
+            s = _solve_scale(tris[idx], clip, region.target_area_mm2, lowest_scale)
+        scale[idx] = s
+        region_scales.append(float(s))
+    tris, scale = tris[keep], scale[keep]
+    c = tris.mean(axis=1)
+    scaled = c[:, None, :] + scale[:, None, None] * (tris - c[:, None, :])
+    pieces, owner = clip.pieces(scaled)
+    return FittedLattice(tris, scale, tuple(region_scales), scaled, tuple(pieces), owner)
+
+
+def _scaled(tris: np.ndarray, s: float) -> np.ndarray:
+    c = tris.mean(axis=1, keepdims=True)
+    return c + s * (tris - c)
+
+
+def _solve_scale(tris: np.ndarray, clip: Clip, target: float, lowest: float) -> float:
+    f = lambda s: float(clip.overlap(_scaled(tris, s)).sum()) - target  # noqa: E731
+    if f(1.0) <= 0.0:
+        return 1.0
+    return brentq(f, lowest, 1.0, xtol=1e-12, rtol=1e-12)
