@@ -63,7 +63,7 @@ def run_demo(demo, outdir, *, force: bool = False, echo=print, time_limit_s: flo
             page = summary_html(demo, built, violations, fab.doc, tmp)
             atomic_write_text(tmp / "summary.html", page)
         files = tuple(sorted(str(p.relative_to(tmp)) for p in tmp.rglob("*") if p.is_file()))
-    return DemoRun(str(outdir), files, len(fab.doc["hoopings"]), len(violations),
+    return DemoRun(str(outdir), files, len(fab.doc.hoopings), len(violations),
                    time.perf_counter() - t_start)
 
 

@@ -8,6 +8,9 @@
   per problem, naming the file and the line.
 * ``revolution``: ``surface_of_revolution`` of a 1D profile and ``write_mesh`` (VTU/PLY/OBJ
   through meshio).
+* ``html_page``: ``page`` of ``Section`` / ``Paragraph`` / ``ItemList`` / ``Table`` / ``Figure``
+  blocks, a self-contained HTML page (one stylesheet, text escaped, PNG/SVG as data URIs).
+* ``jsonsafe``: ``json_safe``, numpy scalars to Python ones and nan/inf to null for strict JSON.
 
 Nothing here knows about the model: every other sub-package may import it.
 """

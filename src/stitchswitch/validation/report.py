@@ -11,8 +11,8 @@ report.json, a list in the report and a marker in the plots.
     report.md  report.html  report.json  scatter_<q>.png (q in h, r_a, z_a, r_b, z_b)
     all_quantities.png  height_map.png
 
-report.html is self-contained (inline CSS, the PNGs as base64 data URIs, no external
-resources). report.json holds the metrics under ``train``/``val`` (see ``metrics``), the
+report.html is self-contained (``files.html_page``: inline CSS, the PNGs as base64 data URIs,
+no external resources). report.json holds the metrics under ``train``/``val`` (see ``metrics``), the
 paper's Table 1 under ``paper_table1``, the data's provenance and sha256, the material's
 hash and every row's prediction. No timestamps: equal inputs give an equal report.json.
 
@@ -29,8 +29,6 @@ in a few seconds and cached.
 """
 from __future__ import annotations
 
-import base64
-import html
 import io
 import json
 import logging
@@ -42,6 +40,18 @@ from pathlib import Path
 import numpy as np
 
 from stitchswitch import __version__
+from stitchswitch.files.html_page import (
+    Figure,
+    Gallery,
+    Paragraph,
+    Section,
+    Table,
+    code,
+    inline,
+    page,
+    strong,
+)
+from stitchswitch.files.jsonsafe import json_safe
 from stitchswitch.files.outdir import building, check_outdir, previous_output
 from stitchswitch.reduced.model.material_io import material_hash
 from stitchswitch.reduced.model.params import Material, Patch
@@ -201,18 +211,6 @@ def provenance_statement(data: MeasuredData) -> str:
     return f"The data file's source line does not say synthetic: {data.source}"
 
 
-def _jsonable(obj):
-    if isinstance(obj, dict):
-        return {k: _jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_jsonable(v) for v in obj]
-    if isinstance(obj, np.generic):
-        obj = obj.item()
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
-
-
 def _report_dict(data: MeasuredData, pred: Predictions, material: Material, label: str) -> dict:
     rows = []
     for i, r in enumerate(data.rows):
@@ -224,7 +222,7 @@ def _report_dict(data: MeasuredData, pred: Predictions, material: Material, labe
             "converged": bool(pred.converged[i]), "residual": float(pred.residual[i]),
             "b_rule": pred.b_rule[i]})
     metrics = table1(data, pred.values)
-    return _jsonable({
+    return json_safe({
         "generator": GENERATOR, "version": __version__,
         "data": {"path": data.path, "source": data.source, "synthetic": data.synthetic,
                  "provenance": provenance_statement(data), "sha256": data.sha256,
@@ -301,96 +299,43 @@ def _markdown(rep: dict) -> str:
     return "\n".join(lines)
 
 
-_CSS = """
-*{box-sizing:border-box}
-body{margin:0;background:#f4f5f7;color:#1d232b;font:15px/1.45 system-ui,-apple-system,"Segoe UI",
-Roboto,"Helvetica Neue",Arial,sans-serif}
-main{max-width:1160px;margin:0 auto;padding:24px 28px 40px;background:#fff;min-height:100vh}
-h1{font-size:26px;margin:4px 0 14px}
-h2{font-size:19px;margin:30px 0 10px;padding-bottom:4px;border-bottom:1px solid #dde1e6}
-.banner{padding:12px 16px;border-radius:6px;font-weight:600;margin:0 0 18px}
-.banner.synthetic{background:#fff1d6;border:2px solid #e09a00;color:#6b4500}
-.banner.unspecified{background:#eef0f3;border:2px solid #8a94a3;color:#2c3440}
-.banner.measured{background:#e6f4ea;border:2px solid #3a9a5b;color:#1e5631}
-table{border-collapse:collapse;font-variant-numeric:tabular-nums}
-th,td{padding:5px 10px;border-bottom:1px solid #e3e6ea;text-align:right;white-space:nowrap}
-th{background:#f0f2f5;font-weight:600}
-td:first-child,th:first-child{text-align:left}
-table.meta td,table.meta th{text-align:left;white-space:normal;word-break:break-all}
-table.meta th{width:150px;background:none;white-space:nowrap}
-td.paper,th.paper{color:#5b6573;background:#f8f9fb}
-.scroll{overflow-x:auto;max-width:100%}
-table.rows{font-size:13px}
-tr.bad td{background:#fde8e8}
-p.note{color:#4a5361;font-size:13.5px;max-width:900px}
-.grid{display:grid;grid-template-columns:repeat(auto-fill,minmax(330px,1fr));gap:14px}
-figure{margin:0;text-align:center}
-figure img{width:100%;height:auto;border:1px solid #e3e6ea}
-img.wide{display:block;max-width:100%;height:auto;margin:0 auto;border:1px solid #e3e6ea}
-code{font-size:13px;background:#f0f2f5;padding:1px 4px;border-radius:3px}
-footer{margin-top:30px;color:#6b7480;font-size:12.5px}
-"""
-
-
 def _html(rep: dict, images: dict[str, bytes]) -> str:
-    e = lambda s: html.escape(str(s))  # noqa: E731
     d, m = rep["data"], rep["material"]
-    uri = lambda name: "data:image/png;base64," + base64.b64encode(images[name]).decode("ascii")  # noqa: E731
     kind = "synthetic" if d["synthetic"] else "unspecified" if d["source"] == "unspecified" else "measured"
-    head = "".join(f'<th class="paper">{e(h)}</th>' if h.startswith("paper") else f"<th>{e(h)}</th>"
-                   for h in METRIC_HEADER)
-    metric_rows = "".join(
-        "<tr>" + "".join(f'<td class="paper">{e(c)}</td>' if j >= 5 else f"<td>{e(c)}</td>"
-                         for j, c in enumerate(row)) + "</tr>" for row in _metric_rows(rep))
     conv = ("every solve converged" if not rep["not_converged"] else
-            f"<strong>{len(rep['not_converged'])} solve(s) did not converge</strong> (lines "
-            f"{e(', '.join(map(str, rep['not_converged'])))}); they are included and circled red")
-    meta = [("data file", f"<code>{e(d['path'])}</code>"), ("source line", e(d["source"])),
-            ("data sha256", f"<code>{e(d['sha256'])}</code>"),
-            ("rows", f"{d['n_train']} train, {d['n_val']} val"),
-            ("material", f"{e(m['label'])}"), ("material sha256", f"<code>{e(m['sha256'])}</code>"),
-            ("predictions", f"{e(rep['solver'])}; {conv}")]
-    meta_html = "".join(f"<tr><th>{e(k)}</th><td>{v}</td></tr>" for k, v in meta)
+            inline(strong(f"{len(rep['not_converged'])} solve(s) did not converge"), " (lines "
+                   f"{', '.join(map(str, rep['not_converged']))}); they are included and circled red"))
+    meta = (("data file", code(d["path"])), ("source line", d["source"]),
+            ("data sha256", code(d["sha256"])), ("rows", f"{d['n_train']} train, {d['n_val']} val"),
+            ("material", m["label"]), ("material sha256", code(m["sha256"])),
+            ("predictions", inline(f"{rep['solver']}; ", conv)))
     skips = _skips(rep)
-    figs = "".join(f'<figure><img src="{uri(f"scatter_{q}.png")}" '
-                   f'alt="measured vs. predicted {e(LABELS[q])}"></figure>' for q in QUANTITIES)
-    row_head = "".join(f"<th>{e(h)}</th>" for h in ROW_HEADER)
-    bad = ' class="bad"'
-    row_html = "".join(
-        f"<tr{'' if r['converged'] else bad}>" +
-        "".join(f"<td>{e(c)}</td>" for c in _row_cells(r)) + "</tr>" for r in rep["rows"])
-    return f"""<!DOCTYPE html>
-<html lang="en">
-<head>
-<meta charset="utf-8">
-<meta name="viewport" content="width=device-width, initial-scale=1">
-<title>stitchswitch validation: {e(os.path.basename(d['path']))}</title>
-<style>{_CSS}</style>
-</head>
-<body>
-<main>
-<h1>Model validation against measured keypoints</h1>
-<p class="banner {kind}">{e(d['provenance'])}</p>
-<table class="meta">{meta_html}</table>
-<h2>Agreement per quantity (as in the paper's Table 1)</h2>
-<div class="scroll"><table class="metrics"><thead><tr>{head}</tr></thead>
-<tbody>{metric_rows}</tbody></table></div>
-<p class="note">Error %: {e(PCT_DEFINITION)}. MAE: {e(MAE_DEFINITION)}. The grey columns are
-quoted from the paper's Table 1 (its own fabricated patches), for comparison only.
-{e('Left out of the error %: ' + '; '.join(skips) + '.') if skips else ''}</p>
-<h2>Actual vs. predicted (as in the paper's Fig. 4 right and Fig. 8)</h2>
-<div class="grid">{figs}</div>
-<h2>The data on the predicted height map h(d, p)</h2>
-<img class="wide" src="{uri('height_map.png')}" alt="height map with the data points">
-<h2>Rows</h2>
-<div class="scroll"><table class="rows"><thead><tr>{row_head}</tr></thead>
-<tbody>{row_html}</tbody></table></div>
-<footer>Generated by {e(rep['generator'])} {e(rep['version'])}. The numbers are in report.json;
-the figures are also saved as PNG files next to this page.</footer>
-</main>
-</body>
-</html>
-"""
+    paper = tuple((j, "paper") for j, h in enumerate(METRIC_HEADER) if h.startswith("paper"))
+    blocks = (
+        Paragraph(d["provenance"], cls=f"banner {kind}"),
+        Table(meta, keys=True),
+        Section("Agreement per quantity (as in the paper's Table 1)", (
+            Table(tuple(_metric_rows(rep)), head=tuple(METRIC_HEADER), cls="numbers",
+                  column_classes=paper, scroll=True),
+            Paragraph(f"Error %: {PCT_DEFINITION}. MAE: {MAE_DEFINITION}. The grey columns are "
+                      "quoted from the paper's Table 1 (its own fabricated patches), for "
+                      "comparison only."
+                      + (" Left out of the error %: " + "; ".join(skips) + "." if skips else ""),
+                      cls="note"))),
+        Section("Actual vs. predicted (as in the paper's Fig. 4 right and Fig. 8)", (
+            Gallery(tuple(Figure(images[f"scatter_{q}.png"], f"measured vs. predicted {LABELS[q]}")
+                          for q in QUANTITIES)),)),
+        Section("The data on the predicted height map h(d, p)", (
+            Figure(images["height_map.png"], "height map with the data points", cls="wide"),)),
+        Section("Rows", (
+            Table(tuple(_row_cells(r) for r in rep["rows"]), head=tuple(ROW_HEADER),
+                  cls="numbers small", scroll=True,
+                  row_classes=tuple(None if r["converged"] else "bad" for r in rep["rows"])),)),
+    )
+    return page(f"stitchswitch validation: {os.path.basename(d['path'])}", blocks,
+                heading="Model validation against measured keypoints",
+                footer=f"Generated by {rep['generator']} {rep['version']}. The numbers are in "
+                       "report.json; the figures are also saved as PNG files next to this page.")
 
 
 # ----------------------------------------------------------------------------- entry point

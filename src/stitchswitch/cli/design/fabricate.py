@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from stitchswitch.cli import options
+from stitchswitch.cli.output import key_value_table
 from stitchswitch.layout.embroidery import export
 from stitchswitch.layout.fabrication.fabricate import FabricateOptions, fabricate
 from stitchswitch.layout.fabrication.grouping.group import MODES
@@ -52,9 +53,9 @@ def fabricate_cmd(design_path, machine, machines_file, hoop, fmt, mode, time_lim
     rep, doc = res.grouping.report, res.doc
     gap = "n/a" if rep.mip_gap is None else f"{100 * rep.mip_gap:.2f} %"
     rows = [
-        ("design", f"{doc['design']['file']} ({doc['totals']['patches']} patches)"),
-        ("machine", f"{doc['machine']['label']}, format {doc['format']}"),
-        ("mode", doc["mode"]),
+        ("design", f"{doc.design.file} ({doc.totals.patches} patches)"),
+        ("machine", f"{doc.machine.label}, format {doc.embroidery_format}"),
+        ("mode", doc.mode),
         ("hoopings", f"{res.grouping.count} ({res.grouping.hoop_types} hoop type(s)); lower "
                      f"bound {rep.hoopings_lower_bound}; first-fit decreasing "
                      f"{rep.greedy_hoopings}"),
@@ -62,18 +63,16 @@ def fabricate_cmd(design_path, machine, machines_file, hoop, fmt, mode, time_lim
         ("solve time", f"{rep.solve_s:.2f} s (limit {time_limit_s:g} s)"),
         ("note", rep.note),
     ]
-    for h in doc["hoopings"]:
-        turn = ", turned 90" if h["orientation_deg"] == 90 else ""
-        rows.append((f"hooping {h['number']}",
-                     f"{h['hoop']}{turn}: {', '.join(p['id'] for p in h['patches'])}; "
-                     f"{h['stitches']} stitches, {h['time_min']:.1f} min -> "
-                     f"{h['files']['embroidery']}"))
-    conf = doc["order"]["conflicts"]
+    for h in doc.hoopings:
+        turn = ", turned 90" if h.orientation_deg == 90 else ""
+        rows.append((f"hooping {h.number}",
+                     f"{h.hoop}{turn}: {', '.join(p.id for p in h.patches)}; "
+                     f"{h.stitches} stitches, {h.time_min:.1f} min -> {h.files.embroidery}"))
+    conf = doc.conflicts
     rows.append(("conflicts", "none" if not conf else
-                 f"{len(conf)} unavoidable (see fabrication.md)" if doc["order"]["exact"] else
+                 f"{len(conf)} unavoidable (see fabrication.md)" if doc.order_exact else
                  f"{len(conf)} (heuristic order; see fabrication.md)"))
-    rows.append(("total", f"{doc['totals']['stitches']} stitches, {doc['totals']['time_min']:.1f} "
+    rows.append(("total", f"{doc.totals.stitches} stitches, {doc.totals.time_min:.1f} "
                           "min of stitching"))
     rows.append(("output", f"{outdir} ({len(res.files)} files)"))
-    width = max(len(k) for k, _ in rows)
-    click.echo("\n".join(f"{k:<{width}}  {v}" for k, v in rows))
+    click.echo(key_value_table(rows))

@@ -7,6 +7,7 @@ import click
 import numpy as np
 
 from stitchswitch.cli import options
+from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.garment.design import VERSION, Design
 from stitchswitch.layout.garment.design_io import save_design
@@ -68,5 +69,4 @@ def import_cmd(pattern, rectangle, name, size, pieces, units, output):
     if repairs:
         rows.append(("repaired", f"{len(repairs)} problem(s) in the DXF file, e.g. {repairs[0]}"))
     rows.append(("file", output))
-    width = max(len(k) for k, _ in rows)
-    click.echo("\n".join(f"{k:<{width}}  {v}" for k, v in rows))
+    click.echo(key_value_table(rows))

@@ -6,6 +6,7 @@ import pathlib
 import click
 
 from stitchswitch.cli import options
+from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery.hoops import JANOME_550E_HOOPS, hoops_fitting
 
@@ -46,5 +47,4 @@ def inspect(file):
             ("extents", f"{s['width_mm']:.1f} x {s['height_mm']:.1f} mm"),
             ("fits", ", ".join(s["hoops"]) or "no hoop (largest: "
              f"{max(JANOME_550E_HOOPS, key=lambda hp: hp.width_mm * hp.height_mm)})")]
-    width = max(len(k) for k, _ in rows)
-    click.echo("\n".join(f"{k:<{width}}  {v}" for k, v in rows))
+    click.echo(key_value_table(rows))

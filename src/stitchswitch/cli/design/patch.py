@@ -4,6 +4,7 @@ from __future__ import annotations
 import click
 
 from stitchswitch.cli import options
+from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery import export
 from stitchswitch.layout.embroidery import stitch_preview as preview
@@ -74,8 +75,7 @@ def patch(diameter_mm, fill, resolution_mm, conductive, core, outline, fmt, hoop
         ("hoop", str(hoop_obj)),
         ("file", f"{output} ({fmt_name})"),
     ] + [("note", n) for n in plan.fabrication_notes()[1:] if len(plan.threads) > 1]
-    width = max(len(k) for k, _ in rows)
-    click.echo("\n".join(f"{k:<{width}}  {v}" for k, v in rows))
+    click.echo(key_value_table(rows))
 
 
 def _numbers(text: str, what: str) -> list[float]:

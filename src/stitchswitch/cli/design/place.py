@@ -4,6 +4,7 @@ from __future__ import annotations
 import click
 
 from stitchswitch.cli import options
+from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.garment.design import STATES
 from stitchswitch.layout.garment.design_io import load_design, save_design
@@ -89,5 +90,4 @@ def place(design, piece, at, grid, centre, along, pitch_mm, diameter_mm, fill, c
     rows = [("added", f"{len(new)} patch(es) on {piece}: d = {diameter_mm:g} mm, fill = {fill:g}")]
     rows += [(p.id, f"({p.centre_mm[0]:.2f}, {p.centre_mm[1]:.2f})") for p in new]
     rows += [("patches", str(len(d.patches))), ("file", target)]
-    width = max(len(k) for k, _ in rows)
-    click.echo("\n".join(f"{k:<{width}}  {v}" for k, v in rows))
+    click.echo(key_value_table(rows))

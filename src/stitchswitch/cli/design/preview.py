@@ -7,6 +7,7 @@ import time
 import click
 
 from stitchswitch.cli import options
+from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.preview3d.camera import VIEWS
 from stitchswitch.preview3d.colours import COLOURS
@@ -24,11 +25,6 @@ def _write(fn, path):
         return fn()
     except OSError as exc:
         raise click.FileError(str(exc.filename or path), hint=exc.strerror or str(exc)) from None
-
-
-def _table(rows) -> str:
-    width = max(len(k) for k, _ in rows)
-    return "\n".join(f"{k:<{width}}  {v}" for k, v in rows)
 
 
 @click.command(cls=options.Command)
@@ -106,7 +102,7 @@ def _design(path, output, state, view, size, colour, mesh_path, material_path):
     if mesh_path is not None:
         rows.append(("mesh", f"{mesh_path} ({n_points} points)"))
     rows.append(("time", f"{time.perf_counter() - t0:.2f} s"))
-    click.echo(_table(rows))
+    click.echo(key_value_table(rows))
 
 
 def _single(output, diameter_mm, fill, state, view, size, colour, mesh_path, material_path):
@@ -147,4 +143,4 @@ def _single(output, diameter_mm, fill, state, view, size, colour, mesh_path, mat
             ("figure", output)]
     if mesh_path is not None:
         rows.append(("mesh", f"{mesh_path} ({n_points} points)"))
-    click.echo(_table(rows))
+    click.echo(key_value_table(rows))

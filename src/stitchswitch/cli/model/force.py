@@ -3,12 +3,13 @@ from __future__ import annotations
 
 import json
 import logging
-import math
 import pathlib
 
 import click
 
 from stitchswitch.cli import options
+from stitchswitch.cli.output import key_value_table
+from stitchswitch.files.jsonsafe import json_safe
 from stitchswitch.reduced.design_space.force_model import (
     ForceFit,
     default_force_fit,
@@ -49,8 +50,7 @@ def force(diameter_mm, fill, data_path, as_json):
     if as_json:
         out = {"force_N": force_N, "d_mm": patch.diameter_mm, "fill": patch.fill,
                "extrapolated": extrapolated, **fit.as_dict()}
-        click.echo(json.dumps({k: None if isinstance(v, float) and not math.isfinite(v) else v
-                               for k, v in out.items()}))
+        click.echo(json.dumps(json_safe(out)))
     else:
         click.echo(table(patch, force_N, fit))
 
@@ -64,5 +64,4 @@ def table(patch: Patch, force_N: float, fit: ForceFit) -> str:
         ("val MAE", f"{fit.mae_val_N:.3f} N"),
         ("data", fit.source),
     ]
-    width = max(len(name) for name, _ in rows)
-    return "\n".join(f"{name:<{width}}  {value}" for name, value in rows)
+    return key_value_table(rows)

@@ -3,13 +3,13 @@ from __future__ import annotations
 
 import json
 import logging
-import math
 
 import click
-import numpy as np
 
 from stitchswitch.cli import options
+from stitchswitch.cli.output import key_value_table
 from stitchswitch.files.atomic import atomic_write_text
+from stitchswitch.files.jsonsafe import json_safe
 from stitchswitch.reduced.model.material_io import load_material, material_hash
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 from stitchswitch.reduced.solvers.solve import Solution, solve
@@ -48,19 +48,7 @@ def simulate(diameter_mm, fill, material_path, solver, max_iter, as_json, profil
             atomic_write_text(profile_csv, profile_csv_text(sol))
         except OSError as exc:
             raise click.FileError(profile_csv, hint=exc.strerror or str(exc)) from None
-    click.echo(json.dumps(_jsonable(sol.as_dict())) if as_json else table(sol, material_path))
-
-
-def _jsonable(d: dict) -> dict:
-    """numpy scalars to Python ones; nan/inf to null so the output is strict JSON."""
-    out = {}
-    for key, value in d.items():
-        if isinstance(value, np.generic):
-            value = value.item()
-        if isinstance(value, float) and not math.isfinite(value):
-            value = None
-        out[key] = value
-    return out
+    click.echo(json.dumps(json_safe(sol.as_dict())) if as_json else table(sol, material_path))
 
 
 def table(sol: Solution, material_path=None) -> str:
@@ -82,8 +70,7 @@ def table(sol: Solution, material_path=None) -> str:
         ("iterations", str(sol.iterations)),
         ("solve time", f"{sol.solve_ms:.0f} ms"),
     ]
-    width = max(len(name) for name, _ in rows)
-    return "\n".join(f"{name:<{width}}  {value}" for name, value in rows)
+    return key_value_table(rows)
 
 
 def profile_csv_text(sol: Solution) -> str:

@@ -7,6 +7,7 @@ import pathlib
 import click
 
 from stitchswitch.cli import options
+from stitchswitch.cli.output import key_value_table
 from stitchswitch.fem_reference.continuation import DEFAULT_START, STARTS
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
@@ -52,7 +53,7 @@ def fem_solve(diameter_mm, fill, material_path, elements, hoop_bending, poisson,
     if as_json:
         click.echo(json.dumps(out))
     else:
-        for k, v in out.items():
-            click.echo(f"{k:12s} {v:.4g}" if isinstance(v, float) else f"{k:12s} {v}")
+        click.echo(key_value_table(((k, f"{v:.4g}" if isinstance(v, float) else v)
+                                    for k, v in out.items()), gap=1))
     if not sol.converged:
         click.echo("warning: the shell solve did not converge", err=True)

@@ -7,6 +7,7 @@ import pathlib
 import click
 
 from stitchswitch.cli import options
+from stitchswitch.cli.output import key_value_table
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 from stitchswitch.validation.measured import QUANTITIES, load_measurements
@@ -63,11 +64,11 @@ def table(rep: dict, report_dir) -> str:
               "MAE in mm; error% = mean |pred - meas| / |meas| (paper: its Table 1, train/val)"]
     if skips:
         lines.append("rows measured as 0, left out of error%: " + ", ".join(skips))
-    lines += [
-        f"data      {d['path']}: {d['n_train']} train, {d['n_val']} val rows",
-        f"source    {d['source']}" + ("  (SYNTHETIC, not measured)" if d["synthetic"] else ""),
-        f"material  {rep['material']['label']} (sha256 {rep['material']['sha256'][:12]})",
-        "solves    " + ("all converged" if not bad else
-                        f"{len(bad)} did not converge (lines {', '.join(map(str, bad))})"),
-        f"report    {pathlib.Path(report_dir) / 'report.html'} (also report.md, report.json, PNGs)"]
-    return "\n".join(lines)
+    facts = [
+        ("data", f"{d['path']}: {d['n_train']} train, {d['n_val']} val rows"),
+        ("source", d["source"] + ("  (SYNTHETIC, not measured)" if d["synthetic"] else "")),
+        ("material", f"{rep['material']['label']} (sha256 {rep['material']['sha256'][:12]})"),
+        ("solves", "all converged" if not bad else
+                   f"{len(bad)} did not converge (lines {', '.join(map(str, bad))})"),
+        ("report", f"{pathlib.Path(report_dir) / 'report.html'} (also report.md, report.json, PNGs)")]
+    return "\n".join(lines + [key_value_table(facts)])

@@ -3,6 +3,7 @@
 * ``fabricate``: ``fabricate(design, outdir, FabricateOptions) -> FabricationResult``.
 * ``grouping/``: hoop grouping (garment and free mode).
 * ``order``: the stitching order of the hoopings; ``plan``: the stitch plan of one hooping.
+* ``document``: ``FabricationDoc``, what fabrication.json holds (``as_dict``), read by the sheet.
 * ``sheet``: the fabrication sheet (Markdown, HTML); ``layout_plot``: the hooping figures.
 
 The top of ``layout``: it imports ``embroidery``, ``garment`` and ``check``.

@@ -33,6 +33,19 @@ from stitchswitch.files.outdir import check_outdir, write_outdir
 from stitchswitch.layout.embroidery import export
 from stitchswitch.layout.embroidery.machines import catalogue
 from stitchswitch.layout.embroidery.stitches import StitchParams
+from stitchswitch.layout.fabrication.document import (
+    Conflict,
+    DesignFile,
+    FabricationDoc,
+    GroupingInfo,
+    HoopingDoc,
+    HoopingFiles,
+    MachineInfo,
+    PlacedPatch,
+    StretchInfo,
+    Thread,
+    Totals,
+)
 from stitchswitch.layout.fabrication.grouping.footprints import stretch
 from stitchswitch.layout.fabrication.grouping.group import MODES, group
 from stitchswitch.layout.fabrication.grouping.result import Grouping
@@ -63,12 +76,12 @@ class FabricationResult:
     grouping: Grouping
     order: StitchingOrder
     files: tuple[str, ...]
-    doc: dict
+    doc: FabricationDoc
 
 
 def _r(v, digits: int = 3):
     if isinstance(v, (list, tuple, np.ndarray)):
-        return [_r(x, digits) for x in v]
+        return tuple(_r(x, digits) for x in v)
     return round(float(v), digits) + 0.0
 
 
@@ -78,13 +91,13 @@ def _hoops(machine, design, options):
     return (machine.hoop(name),) if name else machine.hoops
 
 
-def _design_info(design) -> dict:
+def _design_info(design) -> DesignFile:
     import os
     if design.path is None:
-        return {"file": "(in memory)", "sha256": None}
+        return DesignFile("(in memory)", None)
     with open(design.path, "rb") as f:
         digest = hashlib.sha256(f.read()).hexdigest()
-    return {"file": os.path.basename(design.path), "sha256": digest}
+    return DesignFile(os.path.basename(design.path), digest)
 
 
 def _instructions(mode: str, eta: float) -> list[str]:
@@ -120,7 +133,7 @@ def _limits(doc_hoops, fmt: str, mode: str, grouping: Grouping) -> list[str]:
            "--machines).",
            "Times count stitching only, at the machine's top speed; trims, colour changes, "
            "bobbin changes and hooping add to them."]
-    if fmt == "jef" and any(h["jef_code"] is None for h in doc_hoops):
+    if fmt == "jef" and any(h.jef_code is None for h in doc_hoops):
         out.append("The JEF hoop code of the RE36b is not published: its files keep "
                    "pyembroidery's size-based code (docs/embroidery.md).")
     if mode == "garment":
@@ -184,63 +197,60 @@ def fabricate(design, outdir, options: FabricateOptions = FabricateOptions(),
         files[f"overview.{kind}"] = data
     images["overview.png"] = files["overview.png"]
     doc = _doc(design, machine, fmt.name, options, eta, grouping, order, doc_hoops)
-    files["fabrication.json"] = (json.dumps(doc, indent=2, allow_nan=False) + "\n").encode("utf-8")
+    files["fabrication.json"] = (json.dumps(doc.as_dict(), indent=2, allow_nan=False)
+                                 + "\n").encode("utf-8")
     files["fabrication.md"] = markdown(doc).encode("utf-8")
     files["fabrication.html"] = html_page(doc, images).encode("utf-8")
     write_outdir(outdir, dict(sorted(files.items())), options.force)
     return FabricationResult(str(outdir), grouping, order, tuple(sorted(files)), doc)
 
 
-def _hooping_doc(k, h, hplan, specs, eta, names) -> dict:
+def _hooping_doc(k, h, hplan, specs, eta, names) -> HoopingDoc:
     plan = hplan.plan
-    d = {"number": k, "hoop": h.hoop.name, "field_mm": _r([h.hoop.width_mm, h.hoop.height_mm]),
-         "margin_mm": _r(h.hoop.margin_mm), "frame_width_mm": _r(h.hoop.frame_width_mm),
-         "jef_code": h.hoop.jef_code, "orientation_deg": h.orientation_deg, "piece": h.piece}
-    if h.piece is not None:
-        marks = h.to_piece(np.array(alignment_marks(h.hoop))) / eta
-        d.update(centre_stretched_mm=_r(h.centre_mm),
-                 centre_garment_mm=_r(np.array(h.centre_mm) / eta),
-                 alignment_marks_garment_mm=_r(marks))
-    d["files"] = names
-    d["patches"] = [{"order": n, "id": pid, "position_hoop_mm": _r(xy),
-                     "centre_garment_mm": _r(specs[pid].centre_mm),
-                     "diameter_mm": _r(specs[pid].diameter_mm), "fill": _r(specs[pid].fill, 4),
-                     "conductive": specs[pid].conductive}
-                    for n, (pid, xy) in enumerate(zip(h.patch_ids, h.positions_mm), start=1)]
-    d["threads"] = [{"role": t.role, "colour": t.colour, "patches": list(t.patches)}
-                    for t in hplan.threads]
-    d.update(stitches=plan.stitch_count, trims=plan.trim_count, jumps=plan.jump_count,
-             colour_changes=plan.color_changes, thread_length_m=_r(plan.thread_length_mm / 1000),
-             time_min=_r(plan.sewing_time_min, 2))
-    return d
+    garment = h.piece is not None
+    marks = h.to_piece(np.array(alignment_marks(h.hoop))) / eta if garment else None
+    return HoopingDoc(
+        number=k, hoop=h.hoop.name, field_mm=_r([h.hoop.width_mm, h.hoop.height_mm]),
+        margin_mm=_r(h.hoop.margin_mm), frame_width_mm=_r(h.hoop.frame_width_mm),
+        jef_code=h.hoop.jef_code, orientation_deg=h.orientation_deg, piece=h.piece,
+        centre_stretched_mm=_r(h.centre_mm) if garment else None,
+        centre_garment_mm=_r(np.array(h.centre_mm) / eta) if garment else None,
+        alignment_marks_garment_mm=_r(marks) if garment else None,
+        files=HoopingFiles(**names),
+        patches=tuple(PlacedPatch(order=n, id=pid, position_hoop_mm=_r(xy),
+                                  centre_garment_mm=_r(specs[pid].centre_mm),
+                                  diameter_mm=_r(specs[pid].diameter_mm),
+                                  fill=_r(specs[pid].fill, 4), conductive=specs[pid].conductive)
+                      for n, (pid, xy) in enumerate(zip(h.patch_ids, h.positions_mm), start=1)),
+        threads=tuple(Thread(t.role, t.colour, tuple(t.patches)) for t in hplan.threads),
+        stitches=plan.stitch_count, trims=plan.trim_count, jumps=plan.jump_count,
+        colour_changes=plan.color_changes, thread_length_m=_r(plan.thread_length_mm / 1000),
+        time_min=_r(plan.sewing_time_min, 2))
 
 
-def _doc(design, machine, fmt, options, eta, grouping, order, doc_hoops) -> dict:
+def _doc(design, machine, fmt, options, eta, grouping, order, doc_hoops) -> FabricationDoc:
     rep = grouping.report
-    g = {"method": rep.method, "status": rep.status, "optimal": rep.optimal,
-         "mip_gap": None if rep.mip_gap is None else _r(rep.mip_gap, 6),
-         "hoopings": grouping.count, "hoop_types": grouping.hoop_types,
-         "hoopings_lower_bound": rep.hoopings_lower_bound,
-         "first_fit_decreasing_hoopings": rep.greedy_hoopings, "candidates": rep.candidates,
-         "time_limit_s": options.time_limit_s, "note": rep.note}
-    if grouping.mode == "free":
-        g["spacing_mm"] = _r(options.spacing_mm)
-    return {
-        "generator": GENERATOR, "version": __version__,
-        "design": _design_info(design), "mode": grouping.mode,
-        "machine": {"name": machine.name, "label": machine.label,
-                    "stitches_per_minute": machine.stitches_per_minute, "source": machine.source},
-        "format": fmt,
-        "stretch": {"eta": _r(eta), "instructions": _instructions(grouping.mode, eta)},
-        "grouping": g,
-        "order": {"exact": order.exact,
-                  "conflicts": [{"hooping": c.hooping + 1, "patch": c.patch,
-                                 "stitched_in_hooping": c.stitched_in + 1}
-                                for c in order.conflicts]},
-        "hoopings": doc_hoops,
-        "totals": {"hoopings": len(doc_hoops), "patches": sum(len(h["patches"]) for h in doc_hoops),
-                   "stitches": sum(h["stitches"] for h in doc_hoops),
-                   "time_min": _r(sum(h["time_min"] for h in doc_hoops), 2)},
-        "files": {"overview_png": "overview.png", "overview_svg": "overview.svg"},
-        "limits": _limits(doc_hoops, fmt, grouping.mode, grouping),
-    }
+    g = GroupingInfo(
+        method=rep.method, status=rep.status, optimal=rep.optimal,
+        mip_gap=None if rep.mip_gap is None else _r(rep.mip_gap, 6),
+        hoopings=grouping.count, hoop_types=grouping.hoop_types,
+        hoopings_lower_bound=rep.hoopings_lower_bound,
+        first_fit_decreasing_hoopings=rep.greedy_hoopings, candidates=rep.candidates,
+        time_limit_s=options.time_limit_s, note=rep.note,
+        spacing_mm=_r(options.spacing_mm) if grouping.mode == "free" else None)
+    return FabricationDoc(
+        generator=GENERATOR, version=__version__, design=_design_info(design),
+        mode=grouping.mode,
+        machine=MachineInfo(machine.name, machine.label, machine.stitches_per_minute,
+                            machine.source),
+        embroidery_format=fmt,
+        stretch=StretchInfo(_r(eta), tuple(_instructions(grouping.mode, eta))),
+        grouping=g, order_exact=order.exact,
+        conflicts=tuple(Conflict(c.hooping + 1, c.patch, c.stitched_in + 1)
+                        for c in order.conflicts),
+        hoopings=tuple(doc_hoops),
+        totals=Totals(hoopings=len(doc_hoops), patches=sum(len(h.patches) for h in doc_hoops),
+                      stitches=sum(h.stitches for h in doc_hoops),
+                      time_min=_r(sum(h.time_min for h in doc_hoops), 2)),
+        overview_png="overview.png", overview_svg="overview.svg",
+        limits=tuple(_limits(doc_hoops, fmt, grouping.mode, grouping)))

@@ -4,23 +4,34 @@ The directory follows ``validation.report``'s conventions (``stitchswitch.files.
 in a temporary directory next to the target and renamed into place as a whole (nothing is left
 behind on error); an existing target must be empty or a previous report of this command (its
 report.json says ``"generator": "stitchswitch discover"`` and it holds no other files), which is
-replaced. The HTML is self-contained (figures as data URIs). report.json holds no timestamps or
-timings: equal inputs give equal files.
+replaced. The HTML is self-contained (``files.html_page``, figures as data URIs). report.json
+holds no timestamps or timings: equal inputs give equal files.
 """
 from __future__ import annotations
 
-import base64
-import html
 import json
 import os
 
 from stitchswitch import __version__
+from stitchswitch.files.html_page import (
+    Figure,
+    ItemList,
+    Markup,
+    Paragraph,
+    Section,
+    Table,
+    code,
+    inline,
+    page,
+    strong,
+)
+from stitchswitch.files.jsonsafe import json_safe
 from stitchswitch.files.outdir import check_outdir, previous_output, write_outdir
 from stitchswitch.reduced.model.material_io import material_hash
 from stitchswitch.validation.discovery.effects import get_effect
 from stitchswitch.validation.discovery.figures import FIGURES, all_figures
 from stitchswitch.validation.measured import QUANTITIES
-from stitchswitch.validation.report import _CSS, _jsonable, provenance_statement
+from stitchswitch.validation.report import provenance_statement
 
 __all__ = ["GENERATOR", "REPORT_FILES", "METHOD", "report_dict", "check_discovery_dir",
            "write_discovery_report", "report_json"]
@@ -58,7 +69,7 @@ def report_dict(disc, data, start, start_label: str = "default") -> dict:
                      "before": {q: float(disc.before[i, k]) for k, q in enumerate(QUANTITIES)},
                      "after": {q: float(disc.after[i, k]) for k, q in enumerate(QUANTITIES)}})
     s = disc.summary
-    return _jsonable({
+    return json_safe({
         "generator": GENERATOR, "version": __version__,
         "missing_effect": s["missing_effect"], "significant": s["significant"],
         "effect_parameters": s["effect_parameters"], "decision": s["decision"],
@@ -190,70 +201,48 @@ def _markdown(rep: dict) -> str:
     return "\n".join(lines)
 
 
-def _html_table(rows, cls="metrics") -> str:
-    e = html.escape
-    head = "".join(f"<th>{e(str(c))}</th>" for c in rows[0])
-    body = "".join("<tr>" + "".join(f"<td>{e(str(c))}</td>" for c in r) + "</tr>"
-                   for r in rows[1:])
-    return (f'<div class="scroll"><table class="{cls}"><thead><tr>{head}</tr></thead>'
-            f'<tbody>{body}</tbody></table></div>')
+def _table(rows) -> Table:
+    return Table(tuple(rows[1:]), head=tuple(rows[0]), cls="numbers", scroll=True)
 
 
-def _bold(text: str) -> str:
-    parts = html.escape(text).split("**")
-    return "".join(f"<strong>{p}</strong>" if i % 2 else p for i, p in enumerate(parts))
+def _bold(text: str) -> Markup:
+    """Markdown ``**bold**`` as HTML, the rest escaped."""
+    return inline(*(strong(p) if i % 2 else p for i, p in enumerate(text.split("**"))))
 
 
 def _html(rep: dict, images: dict) -> str:
-    e = html.escape
     st = _story(rep)
     d = rep["data"]
     kind = "synthetic" if d["synthetic"] else ("unspecified" if d["source"] == "unspecified" else "measured")
 
     def img(name, alt):
-        uri = "data:image/png;base64," + base64.b64encode(images[name]).decode("ascii")
-        return f'<img class="wide" src="{uri}" alt="{e(alt)}">'
+        return Figure(images[name], alt, cls="wide")
 
-    method = "".join(f"<li><strong>{e(k)}</strong>: {e(v)}</li>" for k, v in METHOD.items())
-    return f"""<!DOCTYPE html>
-<html lang="en">
-<head>
-<meta charset="utf-8">
-<meta name="viewport" content="width=device-width, initial-scale=1">
-<title>stitchswitch discovery: {e(os.path.basename(d['path']))}</title>
-<style>{_CSS}</style>
-</head>
-<body>
-<main>
-<h1>Discrepancy discovery</h1>
-<p class="banner {kind}">{e(d['provenance'])}</p>
-<p class="note">data <code>{e(d['path'])}</code> (sha256 <code>{e(d['sha256'])}</code>),
-{d['n_train']} train / {d['n_val']} val rows; starting material {e(rep['start_material']['label'])}</p>
-<h2>1. Where the model is wrong</h2>
-<p>{e(st['calib'])}</p><p>{e(st['where'])}</p>
-{_html_table(st['res_table'])}
-{img('residuals_before.png', 'residual maps before')}
-<h2>2. Candidate effects, refitted and ranked</h2>
-<p class="note">Ranking: {e(METHOD['ranking'])}. Significance: {e(METHOD['significance'])}
-(threshold {rep['significance_threshold']:.3g}).</p>
-{_html_table(st['rank_table'])}
-{img('ranking.png', 'ranking')}
-<h2>3. The evidence</h2>
-<p>{_bold(st['verdict'])}</p><p>{e(st['evidence'])}</p>
-{img('signatures.png', 'signatures')}
-<h2>4. The gap before and after, validation rows</h2>
-{_html_table(st['gap_table'])}
-{img('before_after.png', 'before and after')}
-<p>{e(st['after_text'])}</p>
-{img('residuals_after.png', 'residual maps after')}
-<h2>Method</h2>
-<ul class="note">{method}</ul>
-<footer>Generated by {e(rep['generator'])} {e(rep['version'])}. The numbers are in report.json;
-the figures are also saved as PNG files next to this page.</footer>
-</main>
-</body>
-</html>
-"""
+    blocks = (
+        Paragraph(d["provenance"], cls=f"banner {kind}"),
+        Paragraph(inline("data ", code(d["path"]), " (sha256 ", code(d["sha256"]),
+                         f"), {d['n_train']} train / {d['n_val']} val rows; starting material "
+                         f"{rep['start_material']['label']}"), cls="note"),
+        Section("1. Where the model is wrong", (
+            Paragraph(st["calib"]), Paragraph(st["where"]), _table(st["res_table"]),
+            img("residuals_before.png", "residual maps before"))),
+        Section("2. Candidate effects, refitted and ranked", (
+            Paragraph(f"Ranking: {METHOD['ranking']}. Significance: {METHOD['significance']} "
+                      f"(threshold {rep['significance_threshold']:.3g}).", cls="note"),
+            _table(st["rank_table"]), img("ranking.png", "ranking"))),
+        Section("3. The evidence", (
+            Paragraph(_bold(st["verdict"])), Paragraph(st["evidence"]),
+            img("signatures.png", "signatures"))),
+        Section("4. The gap before and after, validation rows", (
+            _table(st["gap_table"]), img("before_after.png", "before and after"),
+            Paragraph(st["after_text"]), img("residuals_after.png", "residual maps after"))),
+        Section("Method", (
+            ItemList(tuple(inline(strong(k), f": {v}") for k, v in METHOD.items()), cls="note"),)),
+    )
+    return page(f"stitchswitch discovery: {os.path.basename(d['path'])}", blocks,
+                heading="Discrepancy discovery",
+                footer=f"Generated by {rep['generator']} {rep['version']}. The numbers are in "
+                       "report.json; the figures are also saved as PNG files next to this page.")
 
 
 def write_discovery_report(disc, data, start, outdir, start_label: str = "default") -> dict:

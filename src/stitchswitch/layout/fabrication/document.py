@@ -1,0 +1,214 @@
+"""What a fabrication folder says, as frozen dataclasses: ``FabricationDoc`` and its parts.
+
+``layout.fabrication.fabricate`` builds one; ``as_dict`` gives the content of fabrication.json
+(keys in a fixed order, optional keys left out where they do not apply), and the sheet
+(``layout.fabrication.sheet``) and the demo summary read the same object, so all of them agree.
+Lengths are in mm, times in minutes, thread in metres, as the field names say.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["DesignFile", "MachineInfo", "StretchInfo", "GroupingInfo", "Conflict",
+           "HoopingFiles", "PlacedPatch", "Thread", "HoopingDoc", "Totals", "FabricationDoc"]
+
+
+@dataclass(frozen=True)
+class DesignFile:
+    file: str
+    sha256: str | None
+
+    def as_dict(self) -> dict:
+        return {"file": self.file, "sha256": self.sha256}
+
+
+@dataclass(frozen=True)
+class MachineInfo:
+    name: str
+    label: str
+    stitches_per_minute: float
+    source: str
+
+    def as_dict(self) -> dict:
+        return {"name": self.name, "label": self.label,
+                "stitches_per_minute": self.stitches_per_minute, "source": self.source}
+
+
+@dataclass(frozen=True)
+class StretchInfo:
+    eta: float
+    instructions: tuple[str, ...]
+
+    def as_dict(self) -> dict:
+        return {"eta": self.eta, "instructions": list(self.instructions)}
+
+
+@dataclass(frozen=True)
+class GroupingInfo:
+    """How the patches were grouped into hoopings. ``spacing_mm`` only in free mode."""
+
+    method: str
+    status: str
+    optimal: bool
+    mip_gap: float | None
+    hoopings: int
+    hoop_types: int
+    hoopings_lower_bound: int
+    first_fit_decreasing_hoopings: int
+    candidates: int
+    time_limit_s: float | None
+    note: str
+    spacing_mm: float | None = None
+
+    def as_dict(self) -> dict:
+        out = {"method": self.method, "status": self.status, "optimal": self.optimal,
+               "mip_gap": self.mip_gap, "hoopings": self.hoopings, "hoop_types": self.hoop_types,
+               "hoopings_lower_bound": self.hoopings_lower_bound,
+               "first_fit_decreasing_hoopings": self.first_fit_decreasing_hoopings,
+               "candidates": self.candidates, "time_limit_s": self.time_limit_s,
+               "note": self.note}
+        if self.spacing_mm is not None:
+            out["spacing_mm"] = self.spacing_mm
+        return out
+
+
+@dataclass(frozen=True)
+class Conflict:
+    """A hoop frame landing on a patch stitched earlier (hoopings numbered from 1)."""
+
+    hooping: int
+    patch: str
+    stitched_in_hooping: int
+
+    def as_dict(self) -> dict:
+        return {"hooping": self.hooping, "patch": self.patch,
+                "stitched_in_hooping": self.stitched_in_hooping}
+
+
+@dataclass(frozen=True)
+class HoopingFiles:
+    embroidery: str
+    png: str
+    svg: str
+
+    def as_dict(self) -> dict:
+        return {"embroidery": self.embroidery, "png": self.png, "svg": self.svg}
+
+
+@dataclass(frozen=True)
+class PlacedPatch:
+    order: int
+    id: str
+    position_hoop_mm: tuple[float, float]
+    centre_garment_mm: tuple[float, float]
+    diameter_mm: float
+    fill: float
+    conductive: str | None
+
+    def as_dict(self) -> dict:
+        return {"order": self.order, "id": self.id,
+                "position_hoop_mm": list(self.position_hoop_mm),
+                "centre_garment_mm": list(self.centre_garment_mm),
+                "diameter_mm": self.diameter_mm, "fill": self.fill, "conductive": self.conductive}
+
+
+@dataclass(frozen=True)
+class Thread:
+    role: str
+    colour: str
+    patches: tuple[str, ...]
+
+    def as_dict(self) -> dict:
+        return {"role": self.role, "colour": self.colour, "patches": list(self.patches)}
+
+
+@dataclass(frozen=True)
+class HoopingDoc:
+    """One hooping. The garment position (``centre_*_mm``, ``alignment_marks_garment_mm``) is
+    None in free mode, where a hooping is its own piece of fabric."""
+
+    number: int
+    hoop: str
+    field_mm: tuple[float, float]
+    margin_mm: float
+    frame_width_mm: float
+    jef_code: int | None
+    orientation_deg: int
+    piece: str | None
+    centre_stretched_mm: tuple[float, float] | None
+    centre_garment_mm: tuple[float, float] | None
+    alignment_marks_garment_mm: tuple | None
+    files: HoopingFiles
+    patches: tuple[PlacedPatch, ...]
+    threads: tuple[Thread, ...]
+    stitches: int
+    trims: int
+    jumps: int
+    colour_changes: int
+    thread_length_m: float
+    time_min: float
+
+    def as_dict(self) -> dict:
+        d = {"number": self.number, "hoop": self.hoop, "field_mm": list(self.field_mm),
+             "margin_mm": self.margin_mm, "frame_width_mm": self.frame_width_mm,
+             "jef_code": self.jef_code, "orientation_deg": self.orientation_deg,
+             "piece": self.piece}
+        if self.piece is not None:
+            d.update(centre_stretched_mm=list(self.centre_stretched_mm),
+                     centre_garment_mm=list(self.centre_garment_mm),
+                     alignment_marks_garment_mm=[list(m) for m in self.alignment_marks_garment_mm])
+        d["files"] = self.files.as_dict()
+        d["patches"] = [p.as_dict() for p in self.patches]
+        d["threads"] = [t.as_dict() for t in self.threads]
+        d.update(stitches=self.stitches, trims=self.trims, jumps=self.jumps,
+                 colour_changes=self.colour_changes, thread_length_m=self.thread_length_m,
+                 time_min=self.time_min)
+        return d
+
+
+@dataclass(frozen=True)
+class Totals:
+    hoopings: int
+    patches: int
+    stitches: int
+    time_min: float
+
+    def as_dict(self) -> dict:
+        return {"hoopings": self.hoopings, "patches": self.patches, "stitches": self.stitches,
+                "time_min": self.time_min}
+
+
+@dataclass(frozen=True)
+class FabricationDoc:
+    """Everything fabrication.json holds; ``overview_png`` / ``overview_svg`` name the
+    overview figures, ``limits`` the caveats of the estimates."""
+
+    generator: str
+    version: str
+    design: DesignFile
+    mode: str
+    machine: MachineInfo
+    embroidery_format: str
+    stretch: StretchInfo
+    grouping: GroupingInfo
+    order_exact: bool
+    conflicts: tuple[Conflict, ...]
+    hoopings: tuple[HoopingDoc, ...]
+    totals: Totals
+    overview_png: str
+    overview_svg: str
+    limits: tuple[str, ...]
+
+    def as_dict(self) -> dict:
+        return {
+            "generator": self.generator, "version": self.version,
+            "design": self.design.as_dict(), "mode": self.mode,
+            "machine": self.machine.as_dict(), "format": self.embroidery_format,
+            "stretch": self.stretch.as_dict(), "grouping": self.grouping.as_dict(),
+            "order": {"exact": self.order_exact,
+                      "conflicts": [c.as_dict() for c in self.conflicts]},
+            "hoopings": [h.as_dict() for h in self.hoopings],
+            "totals": self.totals.as_dict(),
+            "files": {"overview_png": self.overview_png, "overview_svg": self.overview_svg},
+            "limits": list(self.limits),
+        }
