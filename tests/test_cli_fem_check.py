@@ -46,7 +46,7 @@ def test_variant_terms_attribute_the_gap():
     from stitchswitch.fem_reference.check import check_design
 
     row = check_design(Patch(25.0, 0.8), start="reduced")
-    assert abs(row["hoop_node_average_300"]["rel_h_mm"]) < 0.75 * abs(row["reduced"]["300"]["rel_h_mm"])
+    assert abs(row.hoop_node_average_300_rel["h_mm"]) < 0.75 * abs(row.at(300).rel["h_mm"])
 
 
 def test_fem_solve_by_continuation_matches_the_reduced_start():

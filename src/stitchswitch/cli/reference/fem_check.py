@@ -55,9 +55,10 @@ def fem_check_cmd(designs, material_path, hoop_bending, poisson, start, report, 
     text = table(result)
     if report is not None:
         report.mkdir(parents=True, exist_ok=True)
-        atomic_write_text(report / "report.json", json.dumps(result, indent=1, default=float) + "\n")
+        atomic_write_text(report / "report.json", json.dumps(result.as_dict(), indent=1, default=float)
+                          + "\n")
         atomic_write_text(report / "report.md", "# Reduced model against the shell reference\n\n"
                           "```\n" + text + "\n```\n")
-    click.echo(json.dumps(result, default=float) if as_json else text)
-    if not all(t["met"] for t in result["targets"].values()):
+    click.echo(json.dumps(result.as_dict(), default=float) if as_json else text)
+    if not result.all_met:
         raise SystemExit(1)

@@ -76,16 +76,16 @@ def residual_maps(disc, which: str, limits) -> bytes:
 
 def ranking(disc) -> bytes:
     plt = _plt()
-    rows = disc.summary["ranking"]
+    rows = disc.ranking
     base = disc.summary["starting_model"]["cv_score_mm2"]
     fig, ax = plt.subplots(figsize=(8.0, 0.55 * len(rows) + 1.8), dpi=100)
-    names = [r["effect"] for r in rows][::-1]
-    scores = [r["score"] for r in rows][::-1]
-    colors = ["tab:green" if r["significant"] else "0.6" for r in rows][::-1]
+    names = [r.effect for r in rows][::-1]
+    scores = [r.cv_mse_mm2 for r in rows][::-1]
+    colors = ["tab:green" if r.significant else "0.6" for r in rows][::-1]
     ax.barh(names, scores, color=colors, edgecolor="black", linewidth=0.5)
     ax.axvline(base, color="tab:red", ls="--", lw=1.2, label=f"starting model {base:.2f}")
     for y, r in enumerate(rows[::-1]):
-        ax.text(r["score"], y, f"  p = {r['p_value']:.2g}", va="center", fontsize=8)
+        ax.text(r.cv_mse_mm2, y, f"  p = {r.p_value:.2g}", va="center", fontsize=8)
     ax.set_xlabel("cross-validated MSE on the training rows (mm$^2$), lower is better")
     ax.set_title("Candidates ranked (green: significant and better than the starting model)",
                  fontsize=11)
@@ -102,9 +102,9 @@ def signatures(disc, top: int = 3) -> bytes:
     tr = disc.split == "train"
     res = (disc.measured - disc.before)[tr]
     rows = [("starting-model residual", res)]
-    for r in disc.summary["ranking"][:top]:
-        c = r["signature"]["correlation"]
-        rows.append((f"{r['effect']} (corr {c:+.2f})", disc.signatures[r["effect"]]["pattern"]))
+    for r in disc.ranking[:top]:
+        c = r.signature["correlation"]
+        rows.append((f"{r.effect} (corr {c:+.2f})", disc.signatures[r.effect]["pattern"]))
     limits = np.maximum(np.max(np.abs(res), axis=0), 1e-6)
     fig, axes = plt.subplots(len(rows), 5, figsize=(17.0, 3.0 * len(rows)), dpi=80, squeeze=False)
     for i, (label, values) in enumerate(rows):

@@ -27,7 +27,7 @@ add it, and show the gap shrink on the validation rows.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -43,7 +43,7 @@ from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
 from stitchswitch.validation.measured import QUANTITIES, MeasuredData
 from stitchswitch.validation.metrics import split_metrics
 
-__all__ = ["DiscoveryConfig", "Discovery", "discover", "stage_count"]
+__all__ = ["DiscoveryConfig", "Candidate", "Discovery", "discover", "stage_count"]
 
 
 @dataclass(frozen=True)
@@ -88,11 +88,56 @@ class DiscoveryConfig:
 
 
 @dataclass(frozen=True)
+class Candidate:
+    """One candidate effect, refitted on the training rows and cross-validated: errors in mm^2
+    (MSE) and mm (MAE per quantity), the F test against the starting model, the fitted
+    coefficients and effect parameters, the signature correlation (``signature.explain``).
+    ``spec`` and ``x`` are the fit itself (the extended model and its parameter vector), kept
+    for the decision and left out of ``as_dict`` (the entry of report.json's ranking). ``rank``:
+    1 for the lowest cross-validated error, set once all candidates are in."""
+
+    effect: str
+    cv_mse_mm2: float
+    cv_improvement_mm2: float
+    cv_sign_flip_p: float
+    train_mse_mm2: float
+    f_statistic: float
+    p_value: float
+    significant: bool
+    n_parameters: int
+    parameters: dict
+    effect_parameters: dict
+    val_mae_before_mm: dict
+    val_mae_after_mm: dict
+    signature: dict
+    uncertified_solves: int
+    fit_start: str
+    spec: ModelSpec = field(repr=False, compare=False)
+    x: np.ndarray = field(repr=False, compare=False)
+    rank: int | None = None
+
+    def as_dict(self) -> dict:
+        return {"effect": self.effect, "score": self.cv_mse_mm2,
+                "cv_improvement_mm2": self.cv_improvement_mm2,
+                "cv_sign_flip_p": self.cv_sign_flip_p, "train_mse_mm2": self.train_mse_mm2,
+                "f_statistic": self.f_statistic, "p_value": self.p_value,
+                "significant": self.significant, "n_parameters": self.n_parameters,
+                "parameters": dict(self.parameters),
+                "effect_parameters": dict(self.effect_parameters),
+                "val_mae_before": dict(self.val_mae_before_mm),
+                "val_mae_after": dict(self.val_mae_after_mm), "signature": self.signature,
+                "uncertified_solves": self.uncertified_solves, "fit_start": self.fit_start,
+                "rank": self.rank}
+
+
+@dataclass(frozen=True)
 class Discovery:
-    """The result: ``summary`` (JSON-able, deterministic: what report.json holds) and the
-    arrays behind the figures (every row of the data, in file order)."""
+    """The result: ``summary`` (JSON-able, deterministic: what report.json holds, its ranking
+    the ``as_dict`` of ``ranking``), the candidates best first (``ranking``) and the arrays
+    behind the figures (every row of the data, in file order)."""
 
     summary: dict
+    ranking: tuple[Candidate, ...]
     d_mm: np.ndarray
     fill: np.ndarray
     split: np.ndarray
@@ -191,61 +236,55 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         rss1 = float(np.sum((f.predictions - m_tr) ** 2))
         F, p = f_test(rss0, rss1, n_res, base.size, spec.size)
         pred_va = ev.one(spec, f.x, d_va)
-        candidates.append({
-            "effect": name,
-            "score": cv.score_mm2,
-            "cv_improvement_mm2": cv0.score_mm2 - cv.score_mm2,
-            "cv_sign_flip_p": sign_flip_test(cv0.row_loss - cv.row_loss, seed=config.seed),
-            "train_mse_mm2": f.mse_mm2,
-            "f_statistic": F, "p_value": p,
-            "significant": bool(p < config.alpha / m and cv.score_mm2 < cv0.score_mm2),
-            "n_parameters": spec.size,
-            "parameters": {k: v for k, v in f.parameters.items()},
-            "effect_parameters": dict(zip(spec.names[len(base.free):],
-                                          spec.decode(f.x)[1][name])),
-            "val_mae_before": {q: v["mae_mm"] for q, v in _metrics(before[va], m_va).items()},
-            "val_mae_after": {q: v["mae_mm"] for q, v in _metrics(pred_va, m_va).items()},
-            "signature": why,
-            "uncertified_solves": f.uncertified,
-            "fit_start": how["start"],
-            "_fit": (spec, f.x),
-        })
-    ranking = sorted(candidates, key=lambda c: (c["score"], c["n_parameters"], c["effect"]))
-    for rank, c in enumerate(ranking, start=1):
-        c["rank"] = rank
+        candidates.append(Candidate(
+            effect=name,
+            cv_mse_mm2=cv.score_mm2,
+            cv_improvement_mm2=cv0.score_mm2 - cv.score_mm2,
+            cv_sign_flip_p=sign_flip_test(cv0.row_loss - cv.row_loss, seed=config.seed),
+            train_mse_mm2=f.mse_mm2,
+            f_statistic=F, p_value=p,
+            significant=bool(p < config.alpha / m and cv.score_mm2 < cv0.score_mm2),
+            n_parameters=spec.size,
+            parameters=dict(f.parameters),
+            effect_parameters=dict(zip(spec.names[len(base.free):], spec.decode(f.x)[1][name])),
+            val_mae_before_mm={q: v["mae_mm"] for q, v in _metrics(before[va], m_va).items()},
+            val_mae_after_mm={q: v["mae_mm"] for q, v in _metrics(pred_va, m_va).items()},
+            signature=why,
+            uncertified_solves=f.uncertified,
+            fit_start=how["start"],
+            spec=spec, x=f.x))
+    ranking = tuple(replace(c, rank=rank) for rank, c in enumerate(
+        sorted(candidates, key=lambda c: (c.cv_mse_mm2, c.n_parameters, c.effect)), start=1))
 
     # 5. decide, add the winner, show the gap
     step("decision and the validation gap")
     top = ranking[0]
-    winner = top if top["significant"] else None
+    winner = top if top.significant else None
     after = before.copy()
     if winner:
-        spec, x = winner["_fit"]
-        after[tr] = ev.one(spec, x, d_tr)
-        after[va] = ev.one(spec, x, d_va)
+        after[tr] = ev.one(winner.spec, winner.x, d_tr)
+        after[va] = ev.one(winner.spec, winner.x, d_va)
     res_after = residual_analysis(d_all, p_all, measured - after, QUANTITIES, alpha=config.alpha,
                                   permutations=config.permutations, seed=config.seed)
     threshold = config.alpha / m
     if winner:
-        reason = (f"{top['effect']} has the lowest cross-validated error ({top['score']:.3f} "
+        reason = (f"{top.effect} has the lowest cross-validated error ({top.cv_mse_mm2:.3f} "
                   f"against {cv0.score_mm2:.3f} mm^2 for the starting model) and its improvement "
-                  f"is significant: F = {top['f_statistic']:.1f}, p = {top['p_value']:.2g} < "
+                  f"is significant: F = {top.f_statistic:.1f}, p = {top.p_value:.2g} < "
                   f"{threshold:.2g} (alpha {config.alpha:g} / {m} candidates)")
-    elif top["score"] >= cv0.score_mm2:
+    elif top.cv_mse_mm2 >= cv0.score_mm2:
         reason = (f"no candidate lowers the cross-validated error of the starting model "
-                  f"({cv0.score_mm2:.3f} mm^2; best {top['effect']} {top['score']:.3f})")
+                  f"({cv0.score_mm2:.3f} mm^2; best {top.effect} {top.cv_mse_mm2:.3f})")
     else:
-        reason = (f"the best candidate, {top['effect']}, lowers the cross-validated error "
-                  f"({top['score']:.3f} against {cv0.score_mm2:.3f} mm^2) but not significantly: "
-                  f"p = {top['p_value']:.2g} >= {threshold:.2g}")
-    for c in ranking:
-        c.pop("_fit")
+        reason = (f"the best candidate, {top.effect}, lowers the cross-validated error "
+                  f"({top.cv_mse_mm2:.3f} against {cv0.score_mm2:.3f} mm^2) but not "
+                  f"significantly: p = {top.p_value:.2g} >= {threshold:.2g}")
     summary = {
-        "missing_effect": winner["effect"] if winner else None,
+        "missing_effect": winner.effect if winner else None,
         "significant": bool(winner),
-        "effect_parameters": dict(winner["effect_parameters"]) if winner else {},
+        "effect_parameters": dict(winner.effect_parameters) if winner else {},
         "decision": reason,
-        "ranking": ranking,
+        "ranking": [c.as_dict() for c in ranking],
         "before": _metrics(before[va], m_va),
         "after": _metrics(after[va], m_va),
         "starting_model": {
@@ -258,7 +297,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         "n_train": int(tr.sum()), "n_val": int(va.sum()),
         "config": config.as_dict(),
     }
-    return Discovery(summary=summary, d_mm=d_all, fill=p_all, split=split, measured=measured,
+    return Discovery(summary=summary, ranking=ranking, d_mm=d_all, fill=p_all, split=split, measured=measured,
                      before=before, after=after, signatures=sigs,
                      seconds=time.perf_counter() - t0, solves=ev.calls)
 
