@@ -4,16 +4,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from stitchswitch import __version__
-from stitchswitch.files.html_page import (
-    Figure,
-    ItemList,
-    Paragraph,
-    Section,
-    Table,
-    code,
-    inline,
-    page,
-)
+from stitchswitch.files.html_page import Figure, ItemList, Paragraph, Section, Table, code, inline, page
 
 
 def _f(v, digits=2) -> str:

@@ -40,17 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from stitchswitch import __version__
-from stitchswitch.files.html_page import (
-    Figure,
-    Gallery,
-    Paragraph,
-    Section,
-    Table,
-    code,
-    inline,
-    page,
-    strong,
-)
+from stitchswitch.files.html_page import Figure, Gallery, Paragraph, Section, Table, code, inline, page, strong
 from stitchswitch.files.jsonsafe import json_safe
 from stitchswitch.files.outdir import building, check_outdir, previous_output
 from stitchswitch.reduced.model.material_io import material_hash

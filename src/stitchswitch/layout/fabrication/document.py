@@ -1,13 +1,14 @@
 """What a fabrication folder says, as frozen dataclasses: ``FabricationDoc`` and its parts.
 
 ``layout.fabrication.fabricate`` builds one; ``as_dict`` gives the content of fabrication.json
-(keys in a fixed order, optional keys left out where they do not apply), and the sheet
+(keys in a fixed order, optional keys left out where they do not apply; the flat records are
+written field by field, ``dataclasses.asdict``), and the sheet
 (``layout.fabrication.sheet``) and the demo summary read the same object, so all of them agree.
 Lengths are in mm, times in minutes, thread in metres, as the field names say.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 __all__ = ["DesignFile", "MachineInfo", "StretchInfo", "GroupingInfo", "Conflict",
            "HoopingFiles", "PlacedPatch", "Thread", "HoopingDoc", "Totals", "FabricationDoc"]
@@ -18,9 +19,6 @@ class DesignFile:
     file: str
     sha256: str | None
 
-    def as_dict(self) -> dict:
-        return {"file": self.file, "sha256": self.sha256}
-
 
 @dataclass(frozen=True)
 class MachineInfo:
@@ -28,10 +26,6 @@ class MachineInfo:
     label: str
     stitches_per_minute: float
     source: str
-
-    def as_dict(self) -> dict:
-        return {"name": self.name, "label": self.label,
-                "stitches_per_minute": self.stitches_per_minute, "source": self.source}
 
 
 @dataclass(frozen=True)
@@ -80,19 +74,12 @@ class Conflict:
     patch: str
     stitched_in_hooping: int
 
-    def as_dict(self) -> dict:
-        return {"hooping": self.hooping, "patch": self.patch,
-                "stitched_in_hooping": self.stitched_in_hooping}
-
 
 @dataclass(frozen=True)
 class HoopingFiles:
     embroidery: str
     png: str
     svg: str
-
-    def as_dict(self) -> dict:
-        return {"embroidery": self.embroidery, "png": self.png, "svg": self.svg}
 
 
 @dataclass(frozen=True)
@@ -157,7 +144,7 @@ class HoopingDoc:
             d.update(centre_stretched_mm=list(self.centre_stretched_mm),
                      centre_garment_mm=list(self.centre_garment_mm),
                      alignment_marks_garment_mm=[list(m) for m in self.alignment_marks_garment_mm])
-        d["files"] = self.files.as_dict()
+        d["files"] = asdict(self.files)
         d["patches"] = [p.as_dict() for p in self.patches]
         d["threads"] = [t.as_dict() for t in self.threads]
         d.update(stitches=self.stitches, trims=self.trims, jumps=self.jumps,
@@ -172,10 +159,6 @@ class Totals:
     patches: int
     stitches: int
     time_min: float
-
-    def as_dict(self) -> dict:
-        return {"hoopings": self.hoopings, "patches": self.patches, "stitches": self.stitches,
-                "time_min": self.time_min}
 
 
 @dataclass(frozen=True)
@@ -202,13 +185,13 @@ class FabricationDoc:
     def as_dict(self) -> dict:
         return {
             "generator": self.generator, "version": self.version,
-            "design": self.design.as_dict(), "mode": self.mode,
-            "machine": self.machine.as_dict(), "format": self.embroidery_format,
+            "design": asdict(self.design), "mode": self.mode,
+            "machine": asdict(self.machine), "format": self.embroidery_format,
             "stretch": self.stretch.as_dict(), "grouping": self.grouping.as_dict(),
             "order": {"exact": self.order_exact,
-                      "conflicts": [c.as_dict() for c in self.conflicts]},
+                      "conflicts": [asdict(c) for c in self.conflicts]},
             "hoopings": [h.as_dict() for h in self.hoopings],
-            "totals": self.totals.as_dict(),
+            "totals": asdict(self.totals),
             "files": {"overview_png": self.overview_png, "overview_svg": self.overview_svg},
             "limits": list(self.limits),
         }

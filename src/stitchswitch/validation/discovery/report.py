@@ -13,18 +13,7 @@ import json
 import os
 
 from stitchswitch import __version__
-from stitchswitch.files.html_page import (
-    Figure,
-    ItemList,
-    Markup,
-    Paragraph,
-    Section,
-    Table,
-    code,
-    inline,
-    page,
-    strong,
-)
+from stitchswitch.files.html_page import Figure, ItemList, Markup, Paragraph, Section, Table, code, inline, page, strong
 from stitchswitch.files.jsonsafe import json_safe
 from stitchswitch.files.outdir import check_outdir, previous_output, write_outdir
 from stitchswitch.reduced.model.material_io import material_hash
