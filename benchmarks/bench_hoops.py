@@ -71,8 +71,8 @@ def main(argv=None) -> int:
 
     import cvxpy  # noqa: F401  - import time is not grouping time
 
-    from stitchswitch.layout.embroidery.machines import builtin_catalogue
-    machine = builtin_catalogue().machine("janome-550e")
+    from stitchswitch.layout.embroidery.machines import default_machine
+    machine = default_machine()
     hoops = (machine.hoop(args.hoop),) if args.hoop else machine.hoops
     sizes = [int(s) for s in args.sizes.split(",")]
     rows = [run_one(n, seed, mode, hoops, args.time_limit)

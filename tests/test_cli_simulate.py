@@ -123,10 +123,10 @@ def test_bad_input_is_one_line_exit_2(tmp_path, args, expected):
 
 @pytest.mark.parametrize("content, expected", [
     (None, "cannot be read"),
-    ("{not json", "invalid JSON"),
-    ('{"w_log": 1.0}', "missing required field(s) 'w_b_emb'"),
-    (json.dumps({**DEFAULT_MATERIAL.as_dict(), "colour": 3}), "unknown field(s) 'colour'"),
-    (json.dumps({**DEFAULT_MATERIAL.as_dict(), "eta": 0.5}), "eta: 0.5"),
+    ("{not json", "not valid JSON (Expecting property name enclosed in double quotes at line 1"),
+    ('{"w_log": 1.0}', "$.w_b_emb: missing (also missing: 'w_b_fab'"),
+    (json.dumps({**DEFAULT_MATERIAL.as_dict(), "colour": 3}), "$.colour: unknown key (allowed: "),
+    (json.dumps({**DEFAULT_MATERIAL.as_dict(), "eta": 0.5}), "$.eta: 0.5"),
 ])
 def test_bad_material_file_is_one_line_exit_2(tmp_path, content, expected):
     path = tmp_path / "m.json"

@@ -147,61 +147,64 @@ def _set(obj, path, value):
 
 
 CASES = [
-    ("patches[1].fill", 1.4, "patches[1].fill: 1.4 is outside (0, 1]"),
-    ("patches[0].fill", 0, "patches[0].fill: 0 is outside (0, 1]"),
-    ("patches[0].fill", "0.8", "patches[0].fill: '0.8' is not a number"),
-    ("patches[0].fill", True, "patches[0].fill: True is not a number"),
-    ("patches[0].fill", ..., "patches[0].fill: missing"),
-    ("patches[0].diameter_mm", 2, "patches[0].diameter_mm: 2 is outside [5, 360] mm"),
-    ("patches[0].centre_mm", [1, 2, 3], "patches[0].centre_mm: must be a pair [x, y]"),
-    ("patches[0].centre_mm", [1, None], "patches[0].centre_mm[1]: None is not a number"),
-    ("patches[0].piece", "sleeve", "patches[0].piece: 'sleeve' is not a piece of this design "
+    ("patches[1].fill", 1.4, "$.patches[1].fill: 1.4 is outside (0, 1]"),
+    ("patches[0].fill", 0, "$.patches[0].fill: 0 is outside (0, 1]"),
+    ("patches[0].fill", "0.8", "$.patches[0].fill: '0.8' is not a number in (0, 1]"),
+    ("patches[0].fill", True, "$.patches[0].fill: true is not a number in (0, 1]"),
+    ("patches[0].fill", ..., "$.patches[0].fill: missing"),
+    ("patches[0].diameter_mm", 2, "$.patches[0].diameter_mm: 2 is outside [5, 360] mm"),
+    ("patches[0].centre_mm", [1, 2, 3], "$.patches[0].centre_mm: must be a pair [x, y]"),
+    ("patches[0].centre_mm", [1, None], "$.patches[0].centre_mm[1]: null is not a number"),
+    ("patches[0].piece", "sleeve", "$.patches[0].piece: 'sleeve' is not a piece of this design "
                                    "(pieces: front, back)"),
-    ("patches[1].id", "p1", "patches[1].id: 'p1' is already the id of patches[0]"),
-    ("patches[0].id", "", "patches[0].id: must not be empty"),
-    ("patches[0].colour", "red", "patches[0].colour: unknown key"),
-    ("patches[0].state", "sideways", "patches[0].state: 'sideways' is not one of 'up', 'down'"),
-    ("patches[0].conductive", "blob:1", "patches[0].conductive: unknown selection 'blob:1'"),
-    ("patches[0].conductive", "ring:x", "patches[0].conductive: cannot read the selection"),
-    ("patches[0].threads", {"top": "black"}, "patches[0].threads.top: 'black' is not a colour"),
-    ("patches[0].threads", {"bobbin": "#000000"}, "patches[0].threads.bobbin: unknown key"),
-    ("patches[0].threads", [], "patches[0].threads: must be an object, got an array"),
+    ("patches[1].id", "p1", "$.patches[1].id: 'p1' is already the id of $.patches[0]"),
+    ("patches[0].id", "", "$.patches[0].id: must not be empty"),
+    ("patches[0].colour", "red", "$.patches[0].colour: unknown key"),
+    ("patches[0].state", "sideways", "$.patches[0].state: 'sideways' is not one of 'up', 'down'"),
+    ("patches[0].conductive", "blob:1", "$.patches[0].conductive: unknown selection 'blob:1'"),
+    ("patches[0].conductive", "ring:x", "$.patches[0].conductive: cannot read the selection"),
+    ("patches[0].threads", {"top": "black"}, "$.patches[0].threads.top: 'black' is not a colour"),
+    ("patches[0].threads", {"bobbin": "#000000"}, "$.patches[0].threads.bobbin: unknown key"),
+    ("patches[0].threads", [], "$.patches[0].threads: must be an object, got an array"),
     ("patches[1].composite.core_diameter_mm", 60,
-     "patches[1].composite.core_diameter_mm: 60 is outside (0, 60) mm (the patch diameter)"),
-    ("patches[1].composite.core_fill", 1.2, "patches[1].composite.core_fill: 1.2 is outside (0, 1]"),
-    ("patches[1].composite.core_fill", ..., "patches[1].composite.core_fill: missing"),
+     "$.patches[1].composite.core_diameter_mm: 60 is outside (0, 60) mm (the patch diameter)"),
+    ("patches[1].composite.core_fill", 1.2, "$.patches[1].composite.core_fill: 1.2 is outside (0, 1]"),
+    ("patches[1].composite.core_fill", ..., "$.patches[1].composite.core_fill: missing"),
     ("patches[1].composite", None,
-     "patches[1].outline_mm: a custom outline needs patches[1].composite"),
+     "$.patches[1].outline_mm: a custom outline needs $.patches[1].composite"),
     ("patches[1].outline_mm[2]", [25, 25],
-     "patches[1].outline_mm[2]: [25.0, 25.0] lies 35.3553 mm from the centre, outside the "
+     "$.patches[1].outline_mm[2]: [25.0, 25.0] lies 35.3553 mm from the centre, outside the "
      "patch radius 30 mm"),
     ("patches[1].outline_mm", [[-20, -20], [20, 20], [20, -20], [-20, 20]],
-     "patches[1].outline_mm: is not a simple polygon (Self-intersection"),
+     "$.patches[1].outline_mm: is not a simple polygon (Self-intersection"),
     ("patches[1].outline_mm", [[-8, -20], [8, -20], [8, 20], [-8, 20]],
-     "patches[1].outline_mm: the core disc (diameter 20 mm) is not inside the outline "
+     "$.patches[1].outline_mm: the core disc (diameter 20 mm) is not inside the outline "
      "(closest outline point 8 mm from the centre)"),
     ("patches[1].outline_mm", [[5, 5], [25, 5], [25, 15]],
-     "patches[1].outline_mm: does not contain the centre"),
-    ("patches[1].outline_mm", [[0, 0], [1, 1]], "patches[1].outline_mm: needs at least 3 points"),
-    ("patches", {}, "patches: must be an array, got an object"),
-    ("pieces[1].name", "front", "pieces[1].name: 'front' is already the name of pieces[0]"),
-    ("pieces[0].name", 7, "pieces[0].name: must be a string, got a number"),
-    ("pieces[0].outline_mm", [[0, 0], [1, 0]], "pieces[0].outline_mm: needs at least 3 distinct"),
-    ("pieces[0].outline_mm", [[0, 0], [1, 0], [2, 0]], "pieces[0].outline_mm: encloses no area"),
-    ("pieces[0].outline_mm[1]", [300], "pieces[0].outline_mm[1]: must be a pair [x, y]"),
-    ("pieces", ..., "pieces: missing"),
-    ("version", 2, "version: 2 is not a supported design file version (this stitchswitch "
+     "$.patches[1].outline_mm: does not contain the centre"),
+    ("patches[1].outline_mm", [[0, 0], [1, 1]], "$.patches[1].outline_mm: needs at least 3 points"),
+    ("patches", {}, "$.patches: must be an array, got an object"),
+    ("pieces[1].name", "front", "$.pieces[1].name: 'front' is already the name of $.pieces[0]"),
+    ("pieces[0].name", 7, "$.pieces[0].name: must be a string, got a number (7)"),
+    ("pieces[0].outline_mm", [[0, 0], [1, 0]], "$.pieces[0].outline_mm: needs at least 3 distinct"),
+    ("pieces[0].outline_mm", [[0, 0], [1, 0], [2, 0]], "$.pieces[0].outline_mm: encloses no area"),
+    ("pieces[0].outline_mm[1]", [300], "$.pieces[0].outline_mm[1]: must be a pair [x, y]"),
+    ("pieces", ..., "$.pieces: missing"),
+    ("version", 2, "$.version: 2 is not a supported design file version (this stitchswitch "
                    "reads version 1)"),
-    ("version", "1", "version: '1' is not a supported design file version"),
-    ("version", ..., "version: missing (this stitchswitch reads version 1)"),
-    ("colour", "red", "colour: unknown key (allowed: version, pieces, patches, material, machine)"),
+    ("version", "1", "$.version: '1' is not a supported design file version"),
+    ("version", ..., "$.version: missing (this stitchswitch reads version 1)"),
+    ("colour", "red", "$.colour: unknown key (allowed: version, pieces, patches, material, machine)"),
     ("material", {"name": "default", "file": "m.json"},
-     "material: give exactly one of 'name' (a built-in material) or 'file'"),
-    ("material", {"name": "silk"}, "material.name: 'silk' is not a built-in material"),
-    ("machine", {"name": "brother-pe800"}, "machine.name: unknown machine 'brother-pe800' "
+     "$.material: give exactly one of 'name' (a built-in material) or 'file'"),
+    ("material", {"name": "silk"}, "$.material.name: 'silk' is not a built-in material"),
+    ("machine", {"name": "brother-pe800"}, "$.machine.name: unknown machine 'brother-pe800' "
                                            "(machines: janome-550e"),
-    ("machine", {"hoop": "XL99"}, "machine.hoop: 'XL99' is not a hoop of the janome-550e "
+    ("machine", {"hoop": "XL99"}, "$.machine.hoop: 'XL99' is not a hoop of the janome-550e "
                                   "(hoops: SQ14b, RE20b, SQ20b, RE36b)"),
+    ("machine", {"hoop": 5}, "$.machine.hoop: must be a string, got a number (5)"),
+    ("machine", [], "$.machine: must be an object, got an array"),
+    ("patches[0].centre_mm", [1, float("nan")], "$.patches[0].centre_mm[1]: NaN is not a finite number"),
 ]
 
 
@@ -215,14 +218,23 @@ def test_validation_error_names_the_json_path(path, value, message):
     assert message in str(exc.value)
 
 
+def test_machine_from_the_catalogue_in_its_own_spelling():
+    obj = base()
+    obj["machine"] = {"name": "JANOME-550E", "hoop": "re36B"}
+    assert design_from_dict(obj).machine == MachineSpec("janome-550e", "RE36b")
+
+
 def test_not_an_object():
     with pytest.raises(InvalidInputError, match=r"\$: a design must be a JSON object, got an array"):
         design_from_dict([])
 
 
 @pytest.mark.parametrize("text,message", [
-    ('{"version": 1, "version": 1}', "$: duplicate key 'version'"),
-    ('{"version": 1, "pieces": [], "patches": [], "x": NaN}', "$: NaN is not a finite number"),
+    ('{"version": 1, "version": 1}', "$.version: duplicate key"),
+    ('{"version": 1, "pieces": [], "patches": [], "x": NaN}', "$.x: NaN is not a finite number"),
+    ('{"version": 1, "pieces": [{"name": "a", "outline_mm": [[0, 0], [1, 0], [0, Infinity]]}]}',
+     "$.pieces[0].outline_mm[2][1]: Infinity is not a finite number"),
+    ('{"version": 1, "pieces": [], "patches": [{"id": "p", "id": "q"}]}', "$.patches[0].id: duplicate key"),
     ('{"version": 1,', "not valid JSON"),
 ])
 def test_file_level_errors(tmp_path, text, message):

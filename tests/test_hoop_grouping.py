@@ -8,7 +8,7 @@ import shapely
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery.hoop_spec import Hoop
-from stitchswitch.layout.embroidery.hoops import JANOME_550E_HOOPS
+from stitchswitch.layout.embroidery.machines import default_machine
 from stitchswitch.layout.fabrication.grouping import free as hoop_free
 from stitchswitch.layout.fabrication.grouping import garment as hoop_garment
 from stitchswitch.layout.fabrication.grouping import greedy as hoop_greedy
@@ -18,6 +18,7 @@ from stitchswitch.layout.fabrication.grouping.mip import CoverSolution
 
 SQ = Hoop("SQ", 140.0, 140.0, 2, margin_mm=5.0, frame_width_mm=20.0)
 RE = Hoop("RE", 140.0, 200.0, 2, margin_mm=5.0, frame_width_mm=20.0)
+HOOPS = default_machine().hoops
 
 
 def rect_piece(w, h, name="front"):
@@ -142,16 +143,16 @@ def test_garment_several_pieces_never_share_a_hooping():
 def test_garment_mip_never_worse_than_greedy(seed):
     feet = random_feet(20, seed)
     pieces = (rect_piece(900, 900),)
-    g = group(feet, pieces, JANOME_550E_HOOPS, "garment", time_limit_s=10)
+    g = group(feet, pieces, HOOPS, "garment", time_limit_s=10)
     assert g.report.method == "mip"
     assert g.count <= g.report.greedy_hoopings
-    check_valid(g, feet, pieces, JANOME_550E_HOOPS)
+    check_valid(g, feet, pieces, HOOPS)
 
 
 def test_greedy_baselines_are_covers():
     from stitchswitch.layout.fabrication.grouping import candidates as hoop_candidates
     feet = random_feet(15, 3)
-    cands = hoop_candidates.generate(feet, (rect_piece(900, 900),), JANOME_550E_HOOPS)
+    cands = hoop_candidates.generate(feet, (rect_piece(900, 900),), HOOPS)
     for chosen in (hoop_greedy.greedy_cover(cands),
                    hoop_greedy.first_fit_decreasing_garment(cands, [f.diameter_mm for f in feet])):
         assert cands.holds[chosen].any(axis=0).all()
@@ -162,20 +163,20 @@ def test_garment_fallback_when_highs_has_no_solution(monkeypatch):
     pieces = (rect_piece(900, 900),)
     stopped = CoverSolution(None, "user_limit", False, None, None, None, 0.01)
     monkeypatch.setattr(hoop_garment, "solve_cover", lambda *a, **k: stopped)
-    g = group(feet, pieces, JANOME_550E_HOOPS, "garment", time_limit_s=0.5)
+    g = group(feet, pieces, HOOPS, "garment", time_limit_s=0.5)
     assert g.report.method == "greedy-fallback" and not g.report.optimal
     assert g.report.mip_gap is None and "greedy" in g.report.note
     assert g.count <= g.report.greedy_hoopings
-    check_valid(g, feet, pieces, JANOME_550E_HOOPS)
+    check_valid(g, feet, pieces, HOOPS)
 
 
 def test_real_time_limit_keeps_the_guarantees():
     feet = random_feet(40, 5)
     pieces = (rect_piece(900, 900),)
-    g = group(feet, pieces, JANOME_550E_HOOPS, "garment", time_limit_s=0.05)
+    g = group(feet, pieces, HOOPS, "garment", time_limit_s=0.05)
     assert g.report.time_limit_s == 0.05
     assert g.count <= g.report.greedy_hoopings
-    check_valid(g, feet, pieces, JANOME_550E_HOOPS)
+    check_valid(g, feet, pieces, HOOPS)
 
 
 def test_free_known_optima():
@@ -196,26 +197,26 @@ def test_free_known_optima():
 
 def test_free_prefers_fewer_types_then_smaller_hoops():
     feet = feet_of([(0, 0, 40)] * 3)
-    g = group(feet, (), JANOME_550E_HOOPS, "free", spacing_mm=10.0)
+    g = group(feet, (), HOOPS, "free", spacing_mm=10.0)
     assert g.count == 1 and g.hoopings[0].hoop.name == "SQ14b"
 
 
 @pytest.mark.parametrize("seed", [1, 2])
 def test_free_never_worse_than_first_fit(seed):
     feet = random_feet(20, seed, dmin=30, dmax=80)
-    g = group(feet, (), JANOME_550E_HOOPS, "free", time_limit_s=10)
+    g = group(feet, (), HOOPS, "free", time_limit_s=10)
     assert g.count <= g.report.greedy_hoopings
     assert g.count >= g.report.hoopings_lower_bound
-    check_valid(g, feet, (), JANOME_550E_HOOPS)
+    check_valid(g, feet, (), HOOPS)
 
 
 def test_free_fallback(monkeypatch):
     feet = random_feet(12, 6, dmin=30, dmax=80)
     stopped = CoverSolution(None, "user_limit", False, None, None, None, 0.01)
     monkeypatch.setattr(hoop_free, "solve_cover", lambda *a, **k: stopped)
-    g = group(feet, (), JANOME_550E_HOOPS, "free", time_limit_s=1.0)
+    g = group(feet, (), HOOPS, "free", time_limit_s=1.0)
     assert g.report.method == "greedy-fallback" and g.count <= g.report.greedy_hoopings
-    check_valid(g, feet, (), JANOME_550E_HOOPS)
+    check_valid(g, feet, (), HOOPS)
 
 
 def test_lower_bound_pairs():
@@ -229,18 +230,18 @@ def test_patch_larger_than_every_hoop(mode):
     feet = feet_of([(300, 300, 40), (500, 300, 195)])
     with pytest.raises(InvalidInputError, match="patch 'p1': its 195 mm footprint on the stretched "
                                                 "fabric fits no hoop; the roomiest is RE36b"):
-        group(feet, (rect_piece(900, 900),), JANOME_550E_HOOPS, mode)
+        group(feet, (rect_piece(900, 900),), HOOPS, mode)
 
 
 def test_patch_too_close_to_the_edge():
     feet = feet_of([(300, 300, 40), (40, 300, 30)])
     with pytest.raises(InvalidInputError, match="patch 'p1' cannot be hooped: it is too close to "
                                                 "the edge of piece 'front'"):
-        group(feet, (rect_piece(900, 900),), JANOME_550E_HOOPS, "garment")
+        group(feet, (rect_piece(900, 900),), HOOPS, "garment")
     # just far enough: radius + margin + frame = 15 + 5 + 25 = 45 mm from the edge
     ok = feet_of([(300, 300, 40), (45.01, 300, 30)])
-    g = group(ok, (rect_piece(900, 900),), JANOME_550E_HOOPS, "garment")
-    check_valid(g, ok, (rect_piece(900, 900),), JANOME_550E_HOOPS)
+    g = group(ok, (rect_piece(900, 900),), HOOPS, "garment")
+    check_valid(g, ok, (rect_piece(900, 900),), HOOPS)
 
 
 def test_bad_arguments():

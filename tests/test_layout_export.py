@@ -8,7 +8,7 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery import export
 from stitchswitch.layout.embroidery import stitch_preview as preview
 from stitchswitch.layout.embroidery import stitches as st
-from stitchswitch.layout.embroidery.hoops import JANOME_550E_HOOPS, choose_hoop
+from stitchswitch.layout.embroidery.machines import default_machine
 from stitchswitch.layout.embroidery.patch_geometry import ByRing, make_patch
 
 from decoders import dst, jef
@@ -65,7 +65,7 @@ def test_dst_decodes_independently(which, request):
 @pytest.mark.parametrize("which", ["plan", "long_jump_plan"])
 def test_jef_decodes_independently(which, request):
     p = request.getfixturevalue(which)
-    d = jef.decode(export.encode(p, "jef", JANOME_550E_HOOPS[0]))
+    d = jef.decode(export.encode(p, "jef", default_machine().hoops[0]))
     _check(d, p, jef.MAX_MOVE)
     assert d.count(dst.COLOR) == p.color_changes
     assert d.count(jef.TRIM) == p.trim_count          # the Janome trims are kept
@@ -82,7 +82,7 @@ def test_long_jump_is_split_not_truncated(long_jump_plan):
 
 def test_jef_hoop_code_follows_chosen_hoop(plan):
     codes = {h.name: jef.decode(export.encode(plan, "jef", h)).header["hoop"]
-             for h in JANOME_550E_HOOPS[:3]}
+             for h in default_machine().hoops[:3]}
     assert codes == {"SQ14b": 2, "RE20b": 2, "SQ20b": 4}
 
 
@@ -112,11 +112,11 @@ def test_decoders_agree_with_pyembroidery_on_external_star(name, mod):
 
 
 def test_hoop_choice():
-    assert choose_hoop(130, 130).name == "SQ14b"
-    assert choose_hoop(130, 190).name == "RE20b"
-    assert choose_hoop(190, 300).name == "RE36b"
+    assert default_machine().choose_hoop(130, 130).name == "SQ14b"
+    assert default_machine().choose_hoop(130, 190).name == "RE20b"
+    assert default_machine().choose_hoop(190, 300).name == "RE36b"
     with pytest.raises(InvalidInputError, match="largest is RE36b 200 x 360 mm"):
-        choose_hoop(220, 220)
+        default_machine().choose_hoop(220, 220)
 
 
 @pytest.mark.parametrize("fmt", ["png", "svg"])

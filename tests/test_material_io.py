@@ -19,6 +19,8 @@ OTHER = DEFAULT_MATERIAL.replace(w_b_fab=0.123456789012345, n_nodes=400, eta=1.5
 
 
 def write(path, obj):
+    if isinstance(obj, dict):                    # a value ... drops the key
+        obj = {k: v for k, v in obj.items() if v is not ...}
     path.write_text(obj if isinstance(obj, str) else json.dumps(obj))
     return path
 
@@ -74,18 +76,27 @@ def _error(path):
 
 
 @pytest.mark.parametrize("content, expected", [
-    ({**required(), "colour": 1}, "'colour'"),
-    ({k: v for k, v in required().items() if k != "w_log"}, "'w_log'"),
-    ({**required(), "k_r_emb": -1.0}, "k_r_emb: -1.0"),
-    ({**required(), "eta": 5}, "eta: 5"),
-    ({**required(), "n_nodes": 2.5}, "n_nodes: 2.5"),
-    ({**required(), "w_b_emb": "1.0"}, "'w_b_emb': \"1.0\" is not a number"),
-    ({**required(), "w_b_emb": True}, "'w_b_emb': true is not a number"),
-    ({**required(), "w_b_emb": None}, "'w_b_emb': null is not a number"),
-    (json.dumps({**required(), "w_b_emb": float("nan")}), "w_b_emb: nan"),
-    ([1, 2], "JSON object"),
-    ('{"w_b_emb": 1.0,', "invalid JSON at line 1"),
-    ('{"w_b_emb": 1.0, "w_b_emb": 2.0}', "'w_b_emb' appears more than once"),
+    ({**required(), "colour": 1}, "$.colour: unknown key (allowed: w_b_emb, w_b_fab"),
+    ({**required(), "colour": 1, "size": 2}, "$.colour: unknown key (allowed: w_b_emb, w_b_fab"),
+    ({**required(), "colour": 1, "size": 2}, "; also unknown: 'size'"),
+    ({**required(), "w_logg": 1.0, "w_log": ...}, "$.w_logg: unknown key (allowed: "),
+    ({**required(), "w_logg": 1.0, "w_log": ...}, "; did you mean 'w_log'?"),
+    ({k: v for k, v in required().items() if k != "w_log"}, "$.w_log: missing"),
+    ({"w_log": 1.0}, "$.w_b_emb: missing (also missing: 'w_b_fab', 'k_r_emb', 'k_r_fab', "
+                     "'k_theta_emb', 'k_theta_fab')"),
+    ({**required(), "k_r_emb": -1.0}, "$.k_r_emb: -1.0 must be > 0"),
+    ({**required(), "eta": 5}, "$.eta: 5.0 is outside (1, 3]"),
+    ({**required(), "n_nodes": 2.5}, "$.n_nodes: 2.5 is not an integer"),
+    ({**required(), "w_b_emb": "1.0"}, "$.w_b_emb: '1.0' is not a number"),
+    ({**required(), "w_b_emb": True}, "$.w_b_emb: true is not a number"),
+    ({**required(), "w_b_emb": None}, "$.w_b_emb: null is not a number"),
+    ({**required(), "w_b_emb": [1.0]}, "$.w_b_emb: [1.0] is not a number"),
+    (json.dumps({**required(), "w_b_emb": float("nan")}),
+     "$.w_b_emb: NaN is not a finite number (JSON has no NaN or Infinity)"),
+    ([1, 2], "$: a material (an object of material fields) must be a JSON object, got an array"),
+    ('{"w_b_emb": 1.0,', "not valid JSON (Expecting property name enclosed in double quotes at "
+                         "line 1, column 17)"),
+    ('{"w_b_emb": 1.0, "w_b_emb": 2.0}', "$.w_b_emb: duplicate key"),
 ])
 def test_errors_name_the_file_and_the_field(tmp_path, content, expected):
     assert expected in _error(write(tmp_path / "m.json", content))

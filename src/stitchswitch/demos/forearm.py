@@ -29,7 +29,7 @@ CONDUCTIVE = "ring:0"            # the centre triangles, in conductive thread
 
 def build() -> DemoDesign:
     design = Design(1, (forearm_sleeve_panel(),), (), MaterialRef("default"),
-                    MachineSpec("janome-550e", None))
+                    MachineSpec())
     steps = []
     for k, (label, height, band, colour) in enumerate(TIERS):
         step = choose(f"{label} buttons", InverseTarget(

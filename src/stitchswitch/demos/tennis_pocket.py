@@ -24,7 +24,7 @@ def build() -> DemoDesign:
                                           radius_mm=BALL_DIAMETER_MM / 2.0, count=3))
     c = step.chosen
     design = Design(1, (skirt_front_panel(),), (), MaterialRef("default"),
-                    MachineSpec("janome-550e", None))
+                    MachineSpec())
     design = pocket_patch(design, "skirt-front", round(c["d_mm"], 2), round(c["fill"], 4),
                           centre_mm=POCKET_CENTRE_MM)
     notes = (f"Ball: {BALL_DIAMETER_MM:g} mm across; the popped patch's boundary radius r_a is "

@@ -11,6 +11,9 @@
 * ``html_page``: ``page`` of ``Section`` / ``Paragraph`` / ``ItemList`` / ``Table`` / ``Figure``
   blocks, a self-contained HTML page (one stylesheet, text escaped, PNG/SVG as data URIs).
 * ``jsonsafe``: ``json_safe``, numpy scalars to Python ones and nan/inf to null for strict JSON.
+* ``json_checks``: ``loads`` / ``load_file`` and the typed checks (``obj``, ``array``, ``items``,
+  ``text``, ``number``, ``integer``, ``choice``, ``unique``) of the JSON files the package reads
+  (design, machine catalogue, material), each error naming the file and the JSON path.
 
 Nothing here knows about the model: every other sub-package may import it.
 """

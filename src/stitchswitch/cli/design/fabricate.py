@@ -7,6 +7,7 @@ import click
 from stitchswitch.cli import options
 from stitchswitch.cli.output import key_value_table
 from stitchswitch.layout.embroidery import export
+from stitchswitch.layout.embroidery.machines import DEFAULT_MACHINE
 from stitchswitch.layout.fabrication.fabricate import FabricateOptions, fabricate
 from stitchswitch.layout.fabrication.grouping.group import MODES
 from stitchswitch.layout.garment.design_io import load_design
@@ -15,7 +16,8 @@ from stitchswitch.layout.garment.design_io import load_design
 @click.command(cls=options.Command)
 @click.argument("design_path", metavar="DESIGN.json", type=click.Path(dir_okay=False))
 @click.option("--machine", default=None, metavar="NAME",
-              help="Machine of the catalogue (default: the design's; built-in: janome-550e).")
+              help=f"Machine of the catalogue (default: the design's, {DEFAULT_MACHINE} if it "
+                   "names none).")
 @click.option("--machines", "machines_file", type=click.Path(dir_okay=False), default=None,
               metavar="FILE", help="Your own machines (JSON, see docs/fabrication.md), added to "
                                    "the built-in catalogue.")

@@ -8,7 +8,7 @@ import click
 from stitchswitch.cli import options
 from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.embroidery.hoops import JANOME_550E_HOOPS, hoops_fitting
+from stitchswitch.layout.embroidery.machines import default_machine
 
 
 def summarise(path) -> dict:
@@ -33,7 +33,7 @@ def summarise(path) -> dict:
             "colour_changes": cmds.count(pe.COLOR_CHANGE),
             "colours": max(len(pattern.threadlist), cmds.count(pe.COLOR_CHANGE) + 1),
             "width_mm": w, "height_mm": h,
-            "hoops": [str(hp) for hp in hoops_fitting(w, h)]}
+            "hoops": [str(hp) for hp in default_machine().hoops_fitting(w, h)]}
 
 
 @click.command(cls=options.Command)
@@ -45,6 +45,5 @@ def inspect(file):
             ("trims", str(s["trims"])),
             ("colours", f"{s['colours']} ({s['colour_changes']} colour changes)"),
             ("extents", f"{s['width_mm']:.1f} x {s['height_mm']:.1f} mm"),
-            ("fits", ", ".join(s["hoops"]) or "no hoop (largest: "
-             f"{max(JANOME_550E_HOOPS, key=lambda hp: hp.width_mm * hp.height_mm)})")]
+            ("fits", ", ".join(s["hoops"]) or f"no hoop (largest: {default_machine().largest_hoop()})")]
     click.echo(key_value_table(rows))

@@ -8,7 +8,7 @@ from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery import export
 from stitchswitch.layout.embroidery import stitch_preview as preview
-from stitchswitch.layout.embroidery.hoops import choose_hoop
+from stitchswitch.layout.embroidery.machines import default_machine
 from stitchswitch.layout.embroidery.patch_design import geometry_for
 from stitchswitch.layout.embroidery.patch_geometry import make_patch, parse_selection
 from stitchswitch.layout.embroidery.stitches import StitchParams, plan_stitches
@@ -47,7 +47,7 @@ def patch(diameter_mm, fill, resolution_mm, conductive, core, outline, fmt, hoop
     """Write the embroidery file of one patch (hoop coordinates, centre at 0,0): circular, or
     composite (--core) with an optional non-circular outline (--outline)."""
     fmt_name = export.get_format(fmt).name if fmt else export.format_from_path(output).name
-    hoop_obj = choose_hoop(diameter_mm, diameter_mm, hoop)
+    hoop_obj = default_machine().choose_hoop(diameter_mm, diameter_mm, hoop)
     if preview_path and not preview_path.lower().endswith((".png", ".svg")):
         raise InvalidInputError(f"preview {preview_path!r} must end in .png or .svg")
     if core is None and outline is None:

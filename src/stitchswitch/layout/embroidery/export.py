@@ -15,8 +15,8 @@ VP3    25.5 mm     pyembroidery's limit (byte form +-127, long form 16-bit)
 =====  ==========  =====================================================
 
 JEF: trims are written (pyembroidery's ``trims=True``: three zero jumps, the Janome trim), the
-header date is fixed so identical input gives identical bytes, and the hoop code is the chosen
-hoop's (``hoops`` explains the source). Every file ends with the format's END record.
+header date is fixed so identical input gives identical bytes, and the hoop code is that of the
+hoop passed in (``hoop_spec`` explains the codes). Every file ends with the format's END record.
 """
 from __future__ import annotations
 
@@ -33,7 +33,7 @@ import numpy as np
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.layout.embroidery import stitches as st
-from stitchswitch.layout.embroidery.hoops import Hoop, choose_hoop
+from stitchswitch.layout.embroidery.hoop_spec import Hoop
 
 log = logging.getLogger(__name__)
 
@@ -115,11 +115,10 @@ def to_pattern(plan: st.StitchPlan):
 
 
 def encode(plan: st.StitchPlan, fmt: str, hoop: Hoop | None = None) -> bytes:
-    """The file bytes of ``plan`` in format ``fmt`` (deterministic)."""
+    """The file bytes of ``plan`` in format ``fmt`` (deterministic). ``hoop`` is the hoop the
+    plan is stitched in (the caller chooses it, e.g. ``Machine.choose_hoop``); it gives the JEF
+    header's hoop code, and without it the JEF file keeps pyembroidery's size-based code."""
     f = get_format(fmt)
-    if hoop is None:
-        x0, y0, x1, y1 = plan.extents_mm()
-        hoop = choose_hoop(x1 - x0, y1 - y0)
     pattern = to_pattern(subdivide(plan, f.max_move_mm))
     buf = io.BytesIO()
     f.writer(pattern, buf, hoop)

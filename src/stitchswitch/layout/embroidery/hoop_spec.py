@@ -4,7 +4,19 @@ Lengths are mm on the hooped (stretched) fabric. ``width_mm`` x ``height_mm`` is
 field in the hoop's normal position; a placement turned by 90 degrees swaps them. The usable
 area is the field shrunk by ``margin_mm`` on every side; the frame covers the ring of
 ``frame_width_mm`` around the field (it clamps the fabric there, and presses anything already
-stitched under it). ``layout.embroidery.machines`` reads hoops from the catalogue data file.
+stitched under it). ``layout.embroidery.machines`` reads hoops from the catalogue data file and
+is the API to find them (``Machine.hoop``, ``largest_hoop``, ``choose_hoop``).
+
+``jef_code`` is the hoop code of the JEF header. The public sources disagree. libembroidery
+(Embroidermodder, C) numbers them 126x110 = 0, 110x110 = 1, 50x50 = 2, 140x200 = 3,
+230x200 = 4; pyembroidery 1.5 (``JefWriter.py``) numbers them 110x110 = 0, 50x50 = 1,
+140x200 = 2, 126x110 = 3, 200x200 = 4. The catalogue follows pyembroidery: it is the maintained
+successor of that code, its table is the one its JEF reader/writer round-trips, and
+libembroidery's own hoop function is inconsistent with its table (it compares 0.1 mm extents
+against mm sizes). Neither lists the 550E's SQ14b (140x140) or RE36b (200x360): SQ14b gets code 2
+(the 140x200 hoop, the smallest coded hoop holding its whole field) and RE36b keeps ``None``,
+meaning "no published code": the writer then keeps pyembroidery's size-based code and logs a
+warning (docs/embroidery.md).
 """
 from __future__ import annotations
 

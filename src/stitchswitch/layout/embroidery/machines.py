@@ -1,32 +1,45 @@
 """The machine and hoop catalogue: ``stitchswitch/data/machines.json`` plus the user's own file.
 
+The one API for machines and hoops: ``catalogue(user_file)`` (or ``builtin_catalogue()``),
+``Catalogue.machine(name)``, and on a ``Machine``: ``hoop(name)``, ``largest_hoop()``,
+``hoops_fitting(w, h)``, ``choose_hoop(w, h, name)`` and ``stitches_per_minute``.
+``DEFAULT_MACHINE`` names the machine used when none is given (a design file without
+``machine.name``, ``stitchswitch patch``, ``StitchParams``' speed); ``default_machine()`` is it.
+
 A catalogue file is a JSON object ``{"format": "stitchswitch machines", "version": 1,
 "machines": [...]}``; each machine has ``name``, ``label``, ``stitches_per_minute``,
 ``default_format`` (an export format) and ``hoops``, each hoop ``name``, ``width_mm``,
 ``height_mm``, ``margin_mm``, ``frame_width_mm`` and ``jef_code`` (an integer or null); ``notes``
 (text) is allowed on both. Unknown keys are refused. Every problem raises ``InvalidInputError``
-naming the file and the JSON path of the bad value, e.g. ``machines file 'm.json':
-machines[0].hoops[1].margin_mm: -3 must be >= 0``. A user's machine with the name of a built-in
-one replaces it (so measured margins and frame widths of a 550E can be given). See
-docs/fabrication.md.
+naming the file and the JSON path of the bad value (``files.json_checks``), e.g. ``machines file
+'m.json': $.machines[0].hoops[1].margin_mm: -3 must be >= 0 mm``. A user's machine with the name
+of a built-in one replaces it (so measured margins and frame widths of a 550E can be given). The
+export formats a ``default_format`` may name are passed in by the caller (``formats``): this
+module does not import the export registry. See docs/fabrication.md; the JEF hoop codes of the
+built-in hoops are explained in ``hoop_spec``.
 """
 from __future__ import annotations
 
 import json
-import math
 import os
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.files.textio import read_text
+from stitchswitch.files import json_checks as jc
+from stitchswitch.files.json_checks import child
 from stitchswitch.layout.embroidery.hoop_spec import Hoop
+
+__all__ = ["DEFAULT_MACHINE", "Machine", "Catalogue", "catalogue", "builtin_catalogue",
+           "default_machine", "load_machines", "machines_from_dict"]
 
 FORMAT = "stitchswitch machines"
 VERSION = 1
-_MACHINE_KEYS = ("name", "label", "stitches_per_minute", "default_format", "hoops", "notes")
-_HOOP_KEYS = ("name", "width_mm", "height_mm", "margin_mm", "frame_width_mm", "jef_code", "notes")
+#: The machine used when none is named (the paper's machine, appendix A).
+DEFAULT_MACHINE = "janome-550e"
+_MACHINE_KEYS = ("name", "label", "stitches_per_minute", "default_format", "hoops")
+_HOOP_KEYS = ("name", "width_mm", "height_mm", "margin_mm", "frame_width_mm", "jef_code")
 
 
 @dataclass(frozen=True)
@@ -40,11 +53,35 @@ class Machine:
     notes: str = ""
 
     def hoop(self, name: str) -> Hoop:
+        """The hoop called ``name`` (case is ignored)."""
         for h in self.hoops:
             if h.name.lower() == str(name).lower():
                 return h
-        raise InvalidInputError(f"{name!r} is not a hoop of the {self.name}; its hoops are "
-                                + ", ".join(h.name for h in self.hoops))
+        raise InvalidInputError(f"{name!r} is not a hoop of the {self.name} (hoops: "
+                                + ", ".join(h.name for h in self.hoops) + ")")
+
+    def largest_hoop(self) -> Hoop:
+        """The hoop with the largest sewing field (by area; the first of equal ones)."""
+        return max(self.hoops, key=lambda h: h.area_mm2)
+
+    def hoops_fitting(self, width_mm: float, height_mm: float) -> list[Hoop]:
+        """The hoops whose sewing field holds a design of this extent (margin not applied)."""
+        return [h for h in self.hoops if h.fits(width_mm, height_mm)]
+
+    def choose_hoop(self, width_mm: float, height_mm: float, name: str | None = None) -> Hoop:
+        """The hoop ``name`` (checked to hold the design), or else the smallest (by area) that
+        holds it."""
+        if name is not None:
+            hoop = self.hoop(name)
+            if not hoop.fits(width_mm, height_mm):
+                raise InvalidInputError(f"a {width_mm:.1f} x {height_mm:.1f} mm design does not "
+                                        f"fit the hoop {hoop}")
+            return hoop
+        fit = self.hoops_fitting(width_mm, height_mm)
+        if not fit:
+            raise InvalidInputError(f"a {width_mm:.1f} x {height_mm:.1f} mm design fits no hoop; "
+                                    f"the largest is {self.largest_hoop()}")
+        return min(fit, key=lambda h: h.area_mm2)
 
 
 @dataclass(frozen=True)
@@ -54,12 +91,13 @@ class Catalogue:
     def names(self) -> tuple[str, ...]:
         return tuple(m.name for m in self.machines)
 
-    def machine(self, name: str) -> Machine:
+    def machine(self, name: str = DEFAULT_MACHINE) -> Machine:
+        """The machine called ``name`` (case is ignored)."""
         for m in self.machines:
             if m.name.lower() == str(name).lower():
                 return m
-        raise InvalidInputError(f"unknown machine {name!r}; the machines are "
-                                + ", ".join(self.names()))
+        raise InvalidInputError(f"unknown machine {name!r} (machines: "
+                                + ", ".join(self.names()) + ")")
 
     def with_machines(self, extra) -> "Catalogue":
         """This catalogue with ``extra`` machines added; a name already present is replaced."""
@@ -69,124 +107,87 @@ class Catalogue:
         return Catalogue(kept + extra)
 
 
-class _Bad(Exception):
-    def __init__(self, path: str, message: str):
-        super().__init__(f"{path}: {message}")
+# --- reading --------------------------------------------------------------------------------
+
+def _length(obj, key, path, positive: bool) -> float:
+    return jc.number(obj[key], child(path, key), low=0.0, low_open=positive, unit="mm")
 
 
-def _keys(obj, path: str, allowed, required) -> None:
-    if not isinstance(obj, dict):
-        raise _Bad(path, f"must be an object, not {type(obj).__name__}")
-    for k in obj:
-        if k not in allowed:
-            raise _Bad(f"{path}.{k}" if path else k, "unknown key; allowed: " + ", ".join(allowed))
-    for k in required:
-        if k not in obj:
-            raise _Bad(f"{path}.{k}" if path else k, "is missing")
-
-
-def _text(obj, key, path) -> str:
-    v = obj[key]
-    if not isinstance(v, str) or not v.strip():
-        raise _Bad(f"{path}.{key}", f"{v!r} must be a non-empty string")
-    return v.strip()
-
-
-def _number(obj, key, path, minimum=0.0, strict=True) -> float:
-    v = obj[key]
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise _Bad(f"{path}.{key}", f"{v!r} must be a finite number")
-    if (strict and v <= minimum) or (not strict and v < minimum):
-        raise _Bad(f"{path}.{key}", f"{v!r} must be {'>' if strict else '>='} {minimum:g}")
-    return float(v)
+def _notes(obj, path) -> str:
+    return jc.text(obj.get("notes", ""), child(path, "notes"))
 
 
 def _hoop(obj, path: str) -> Hoop:
-    _keys(obj, path, _HOOP_KEYS, _HOOP_KEYS[:-1])
-    name = _text(obj, "name", path)
-    w, h = _number(obj, "width_mm", path), _number(obj, "height_mm", path)
-    margin = _number(obj, "margin_mm", path, strict=False)
-    frame = _number(obj, "frame_width_mm", path, strict=False)
+    jc.obj(obj, path, required=_HOOP_KEYS, optional=("notes",))
+    name = jc.text(obj["name"], child(path, "name"), nonempty=True).strip()
+    w, h = _length(obj, "width_mm", path, True), _length(obj, "height_mm", path, True)
+    margin = _length(obj, "margin_mm", path, False)
+    frame = _length(obj, "frame_width_mm", path, False)
     if 2 * margin >= min(w, h):
-        raise _Bad(f"{path}.margin_mm", f"{margin:g} leaves no usable area in a {w:g} x {h:g} mm "
-                                        "field")
-    code = obj["jef_code"]
-    if code is not None and (isinstance(code, bool) or not isinstance(code, int) or code < 0):
-        raise _Bad(f"{path}.jef_code", f"{code!r} must be a non-negative integer or null")
-    if "notes" in obj and not isinstance(obj["notes"], str):
-        raise _Bad(f"{path}.notes", "must be a string")
+        jc.fail(child(path, "margin_mm"), f"{margin:g} leaves no usable area in a {w:g} x {h:g} "
+                                          "mm field")
+    code = jc.integer(obj["jef_code"], child(path, "jef_code"), low=0, nullable=True)
+    _notes(obj, path)
     return Hoop(name, w, h, code, margin, frame)
 
 
 def _machine(obj, path: str, source: str, formats) -> Machine:
-    _keys(obj, path, _MACHINE_KEYS, _MACHINE_KEYS[:-1])
-    name, label = _text(obj, "name", path), _text(obj, "label", path)
-    spm = _number(obj, "stitches_per_minute", path)
-    fmt = _text(obj, "default_format", path).lower()
-    if formats is not None and fmt not in formats:
-        raise _Bad(f"{path}.default_format", f"{fmt!r} is not an export format ("
-                   + ", ".join(formats) + ")")
-    hoops = obj["hoops"]
-    if not isinstance(hoops, list) or not hoops:
-        raise _Bad(f"{path}.hoops", "must be a non-empty array")
-    parsed = tuple(_hoop(h, f"{path}.hoops[{i}]") for i, h in enumerate(hoops))
-    seen = set()
-    for i, h in enumerate(parsed):
-        if h.name.lower() in seen:
-            raise _Bad(f"{path}.hoops[{i}].name", f"{h.name!r} appears twice")
-        seen.add(h.name.lower())
-    notes = obj.get("notes", "")
-    if not isinstance(notes, str):
-        raise _Bad(f"{path}.notes", "must be a string")
-    return Machine(name, label, spm, fmt, parsed, source, notes)
+    jc.obj(obj, path, required=_MACHINE_KEYS, optional=("notes",))
+    name = jc.text(obj["name"], child(path, "name"), nonempty=True).strip()
+    label = jc.text(obj["label"], child(path, "label"), nonempty=True).strip()
+    spm = jc.number(obj["stitches_per_minute"], child(path, "stitches_per_minute"), low=0.0,
+                    low_open=True)
+    fmt_path = child(path, "default_format")
+    fmt = jc.text(obj["default_format"], fmt_path, nonempty=True).strip().lower()
+    if formats is not None:
+        fmt = jc.choice(fmt, fmt_path, formats, what="an export format")
+    hoops_path = child(path, "hoops")
+    hoops = tuple(jc.items(obj["hoops"], hoops_path, _hoop, nonempty=True))
+    jc.unique([h.name for h in hoops], hoops_path, "name", ignore_case=True)
+    return Machine(name, label, spm, fmt, hoops, source, _notes(obj, path))
 
 
 def machines_from_dict(obj, source: str, formats=None) -> tuple[Machine, ...]:
     """The machines of a parsed catalogue object (``source`` names it in errors); if
     ``formats`` is given, every ``default_format`` must be one of them."""
-    try:
-        _keys(obj, "", ("format", "version", "about", "machines"),
-              ("format", "version", "machines"))
+    root = jc.ROOT
+    with jc.reporting(source):
+        jc.obj(obj, root, required=("format", "version", "machines"), optional=("about",),
+               what="a machines file")
         if obj["format"] != FORMAT:
-            raise _Bad("format", f"{obj['format']!r} must be {FORMAT!r}")
+            jc.fail(child(root, "format"), f"{jc.show(obj['format'])} must be {FORMAT!r}")
         if obj["version"] != VERSION or isinstance(obj["version"], bool):
-            raise _Bad("version", f"{obj['version']!r} is not a supported version ({VERSION})")
-        ms = obj["machines"]
-        if not isinstance(ms, list) or not ms:
-            raise _Bad("machines", "must be a non-empty array")
-        out = tuple(_machine(m, f"machines[{i}]", source, formats) for i, m in enumerate(ms))
-        seen = set()
-        for i, m in enumerate(out):
-            if m.name.lower() in seen:
-                raise _Bad(f"machines[{i}].name", f"{m.name!r} appears twice")
-            seen.add(m.name.lower())
+            jc.fail(child(root, "version"), f"{jc.show(obj['version'])} is not a supported "
+                                            f"version ({VERSION})")
+        jc.text(obj.get("about", ""), child(root, "about"))
+        machines_path = child(root, "machines")
+        out = tuple(jc.items(obj["machines"], machines_path,
+                             lambda m, path: _machine(m, path, source, formats), nonempty=True))
+        jc.unique([m.name for m in out], machines_path, "name", ignore_case=True)
         return out
-    except _Bad as exc:
-        raise InvalidInputError(f"{source}: {exc}") from None
 
 
-def load_machines(path) -> tuple[Machine, ...]:
-    """The machines of a user's catalogue file."""
+def load_machines(path, formats=None) -> tuple[Machine, ...]:
+    """The machines of a user's catalogue file; ``formats``: the export formats a
+    ``default_format`` may name (None: not checked here)."""
     where = f"machines file {os.fspath(path)!r}"
-    text = read_text(path, where)
-    try:
-        obj = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InvalidInputError(f"{where}: not valid JSON ({exc.msg} at line {exc.lineno}, "
-                                f"column {exc.colno})") from None
-    from stitchswitch.layout.embroidery.export import supported_formats
-    return machines_from_dict(obj, where, supported_formats())
+    return machines_from_dict(jc.load_file(path, where), where, formats)
 
 
 @lru_cache(maxsize=1)
 def builtin_catalogue() -> Catalogue:
-    """The shipped catalogue (its export formats are checked by the tests: reading it must not
-    import the export registry, which itself needs ``layout.embroidery.hoops``)."""
+    """The shipped catalogue (its export formats are checked by the tests)."""
     text = resources.files("stitchswitch").joinpath("data/machines.json").read_text("utf-8")
     return Catalogue(machines_from_dict(json.loads(text), "built-in machines.json"))
 
 
-def catalogue(user_file=None) -> Catalogue:
-    """The built-in catalogue, with the machines of ``user_file`` added (or replacing)."""
+def default_machine() -> Machine:
+    """The built-in ``DEFAULT_MACHINE``."""
+    return builtin_catalogue().machine(DEFAULT_MACHINE)
+
+
+def catalogue(user_file=None, formats=None) -> Catalogue:
+    """The built-in catalogue, with the machines of ``user_file`` added (or replacing);
+    ``formats`` as for ``load_machines``."""
     base = builtin_catalogue()
-    return base if user_file is None else base.with_machines(load_machines(user_file))
+    return base if user_file is None else base.with_machines(load_machines(user_file, formats))

@@ -20,18 +20,23 @@ Parameters and rules (docs/embroidery.md):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.embroidery.machines import default_machine
 from stitchswitch.layout.embroidery.ordering import visiting_order
 from stitchswitch.layout.embroidery.patch_geometry import PatchGeometry
 
 STITCH, JUMP, TRIM, COLOR_CHANGE, END = 0, 1, 2, 3, 4
 COMMAND_NAMES = {STITCH: "stitch", JUMP: "jump", TRIM: "trim", COLOR_CHANGE: "color change",
                  END: "end"}
-JANOME_550E_SPM = 860.0   # Janome MemoryCraft 550E, maximum embroidery speed, stitches/min
+
+
+def _default_speed() -> float:
+    """The default machine's top embroidery speed (stitches/min), from the machine catalogue."""
+    return default_machine().stitches_per_minute
 
 
 @dataclass(frozen=True)
@@ -54,7 +59,7 @@ class StitchParams:
     underlay_inset_mm: float = 0.4
     lock_stitch_mm: float = 0.7
     travel_run_max_mm: float = 2.0
-    stitches_per_minute: float = JANOME_550E_SPM
+    stitches_per_minute: float = field(default_factory=_default_speed)
 
     def __post_init__(self):
         for name in ("row_spacing_mm", "max_stitch_mm", "min_stitch_mm", "satin_max_width_mm",
@@ -72,7 +77,7 @@ class StitchPlan:
     xy_mm: np.ndarray          # (n, 2)
     commands: np.ndarray       # (n,) STITCH / JUMP / TRIM / COLOR_CHANGE / END
     threads: tuple[Thread, ...]
-    stitches_per_minute: float = JANOME_550E_SPM
+    stitches_per_minute: float = field(default_factory=_default_speed)
 
     @property
     def stitch_count(self) -> int:

@@ -157,7 +157,8 @@ def fabricate(design, outdir, options: FabricateOptions = FabricateOptions(),
     if options.mode not in MODES:
         raise InvalidInputError(f"unknown mode {options.mode!r}; the modes are "
                                 + ", ".join(MODES))
-    machine = catalogue(options.machines_file).machine(options.machine or design.machine.name)
+    machine = catalogue(options.machines_file, export.supported_formats()).machine(
+        options.machine or design.machine.name)
     hoops = _hoops(machine, design, options)
     fmt = export.get_format(options.fmt or machine.default_format)
     eta = float(design.material_object().eta)

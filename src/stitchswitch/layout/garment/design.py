@@ -17,6 +17,7 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.embroidery.machines import DEFAULT_MACHINE
 
 VERSION = 1
 STATES = ("up", "down")
@@ -117,7 +118,7 @@ class MaterialRef:
 @dataclass(frozen=True)
 class MachineSpec:
     """The embroidery machine and, optionally, the hoop to use (None: chosen per hooping)."""
-    name: str = "janome-550e"
+    name: str = DEFAULT_MACHINE
     hoop: str | None = None
 
 

@@ -1,7 +1,9 @@
 """Reading, validating and writing design files (version 1, docs/design-file.md).
 
 Every problem raises ``InvalidInputError`` whose message names the file and the JSON path of
-the bad value, e.g. ``design file 'a.json': patches[3].fill: 1.4 is outside (0, 1]``.
+the bad value (``files.json_checks``), e.g. ``design file 'a.json': $.patches[3].fill: 1.4 is
+outside (0, 1]``. The machine and its hoop are checked against the built-in catalogue
+(``layout.embroidery.machines``).
 
 The written form is canonical: the documented key order, two-space indent, a coordinate pair
 per line, floats rounded to 6 decimals (1e-6 mm) and printed as Python's shortest repr, a final
@@ -11,14 +13,15 @@ what it writes, so a saved file always loads.
 from __future__ import annotations
 
 import json
-import math
 import os
 
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files import json_checks as jc
 from stitchswitch.files.atomic import atomic_write_text
-from stitchswitch.files.textio import read_text
+from stitchswitch.files.json_checks import child
+from stitchswitch.layout.embroidery.machines import DEFAULT_MACHINE, builtin_catalogue
 from stitchswitch.layout.garment.design import (
     STATES,
     VERSION,
@@ -32,34 +35,10 @@ from stitchswitch.layout.garment.design import (
 )
 
 __all__ = ["load_design", "save_design", "design_from_dict", "design_to_dict", "dumps_design",
-           "validate_design", "machine_hoops", "machine_names"]
+           "validate_design"]
 
 DECIMALS = 6
 TOL_MM = 1e-6          # geometric tolerance of the validator: the rounding of the file
-
-
-def machine_hoops(name: str):
-    """The hoops of a machine of the built-in catalogue (``layout.embroidery.machines``); KeyError if
-    there is no such machine."""
-    return _machine_table()[name]
-
-
-def machine_names() -> tuple[str, ...]:
-    return tuple(_machine_table())
-
-
-def _machine_table() -> dict:
-    try:
-        from stitchswitch.layout.embroidery.machines import builtin_catalogue
-    except ImportError:                       # no catalogue: the 550E's hoops
-        from stitchswitch.layout.embroidery.hoops import JANOME_550E_HOOPS
-        return {"janome-550e": JANOME_550E_HOOPS}
-    return {m.name: m.hoops for m in builtin_catalogue().machines}
-
-
-class _Invalid(Exception):
-    def __init__(self, path: str, message: str):
-        super().__init__(f"{path}: {message}")
 
 
 # --- reading ------------------------------------------------------------------------------
@@ -67,15 +46,7 @@ class _Invalid(Exception):
 def load_design(path) -> Design:
     """Read and validate a design file; the material it names is loaded once to check it."""
     where = f"design file {os.fspath(path)!r}"
-    text = read_text(path, where)
-    try:
-        obj = json.loads(text, object_pairs_hook=_no_duplicates, parse_constant=_no_constant)
-    except json.JSONDecodeError as exc:
-        raise InvalidInputError(f"{where}: not valid JSON ({exc.msg} at line {exc.lineno}, "
-                                f"column {exc.colno})") from None
-    except _Invalid as exc:
-        raise InvalidInputError(f"{where}: {exc}") from None
-    design = design_from_dict(obj, where)
+    design = design_from_dict(jc.load_file(path, where), where)
     design = Design(design.version, design.pieces, design.patches, design.material,
                     design.machine, path=os.fspath(path))
     try:
@@ -85,26 +56,11 @@ def load_design(path) -> Design:
     return design
 
 
-def _no_duplicates(pairs):
-    out = {}
-    for key, value in pairs:
-        if key in out:
-            raise _Invalid("$", f"duplicate key {key!r}")
-        out[key] = value
-    return out
-
-
-def _no_constant(name):
-    raise _Invalid("$", f"{name} is not a finite number")
-
-
 def design_from_dict(obj, source: str = "design") -> Design:
     """Validate a parsed design file (dict) and build the ``Design``; errors start with
     ``source`` and name the JSON path."""
-    try:
-        return _design(obj)
-    except _Invalid as exc:
-        raise InvalidInputError(f"{source}: {exc}") from None
+    with jc.reporting(source):
+        return _design(obj, jc.ROOT)
 
 
 def validate_design(design: Design, source: str = "design") -> Design:
@@ -114,228 +70,167 @@ def validate_design(design: Design, source: str = "design") -> Design:
                   checked.machine, design.path)
 
 
-def _design(obj) -> Design:
+def _design(obj, path) -> Design:
     if not isinstance(obj, dict):
-        raise _Invalid("$", f"a design must be a JSON object, got {_kind(obj)}")
+        jc.obj(obj, path, what="a design")
+    version_path = child(path, "version")
     if "version" not in obj:
-        raise _Invalid("version", "missing (this stitchswitch reads version 1)")
+        jc.fail(version_path, f"missing (this stitchswitch reads version {VERSION})")
     version = obj["version"]
     if isinstance(version, bool) or not isinstance(version, int) or version != VERSION:
-        raise _Invalid("version", f"{version!r} is not a supported design file version "
-                                  f"(this stitchswitch reads version {VERSION})")
-    _keys(obj, "$", required=("version", "pieces", "patches"), optional=("material", "machine"))
-    pieces = tuple(_piece(p, f"pieces[{i}]") for i, p in enumerate(_list(obj["pieces"], "pieces")))
-    names = {}
-    for i, p in enumerate(pieces):
-        if p.name in names:
-            raise _Invalid(f"pieces[{i}].name", f"{p.name!r} is already the name of "
-                                                f"pieces[{names[p.name]}]")
-        names[p.name] = i
-    patches = tuple(_patch(p, f"patches[{i}]", names)
-                    for i, p in enumerate(_list(obj["patches"], "patches")))
-    ids = {}
-    for i, p in enumerate(patches):
-        if p.id in ids:
-            raise _Invalid(f"patches[{i}].id",
-                           f"{p.id!r} is already the id of patches[{ids[p.id]}]")
-        ids[p.id] = i
-    material = _material(obj.get("material", {"name": "default"}), "material")
-    machine = _machine(obj.get("machine", {"name": "janome-550e", "hoop": None}), "machine")
+        jc.fail(version_path, f"{jc.show(version)} is not a supported design file version "
+                              f"(this stitchswitch reads version {VERSION})")
+    jc.obj(obj, path, required=("version", "pieces", "patches"), optional=("material", "machine"))
+    pieces_path, patches_path = child(path, "pieces"), child(path, "patches")
+    pieces = tuple(jc.items(obj["pieces"], pieces_path, _piece))
+    jc.unique([p.name for p in pieces], pieces_path, "name")
+    names = {p.name: i for i, p in enumerate(pieces)}
+    patches = tuple(jc.items(obj["patches"], patches_path,
+                             lambda p, where: _patch(p, where, names)))
+    jc.unique([p.id for p in patches], patches_path, "id")
+    material = _material(obj.get("material", {"name": "default"}), child(path, "material"))
+    machine = _machine(obj.get("machine", {}), child(path, "machine"))
     return Design(version, pieces, patches, material, machine)
 
 
 def _piece(obj, path) -> PieceSpec:
-    _keys(obj, path, required=("name", "outline_mm"), optional=("size", "source"))
-    name = _text(obj["name"], f"{path}.name", nonempty=True)
-    size = _text(obj.get("size", ""), f"{path}.size")
-    source = _text(obj.get("source", ""), f"{path}.source")
-    ring = _points(obj["outline_mm"], f"{path}.outline_mm")
+    jc.obj(obj, path, required=("name", "outline_mm"), optional=("size", "source"))
+    name = jc.text(obj["name"], child(path, "name"), nonempty=True)
+    size = jc.text(obj.get("size", ""), child(path, "size"))
+    source = jc.text(obj.get("source", ""), child(path, "source"))
+    outline_path = child(path, "outline_mm")
+    ring = _points(obj["outline_mm"], outline_path)
     if len(ring) > 3 and np.allclose(ring[0], ring[-1], rtol=0.0, atol=TOL_MM):
         ring = ring[:-1]                     # a repeated first point is accepted and dropped
     if len(ring) < 3:
-        raise _Invalid(f"{path}.outline_mm", f"needs at least 3 distinct points, got {len(ring)}")
+        jc.fail(outline_path, f"needs at least 3 distinct points, got {len(ring)}")
     if abs(_area(ring)) <= TOL_MM:
-        raise _Invalid(f"{path}.outline_mm", "encloses no area")
+        jc.fail(outline_path, "encloses no area")
     return PieceSpec(name, size, source, ring)
 
 
 def _patch(obj, path, pieces: dict) -> PatchSpec:
     from stitchswitch.layout.embroidery.patch_geometry import DIAMETER_RANGE_MM, parse_selection
 
-    _keys(obj, path, required=("id", "piece", "centre_mm", "diameter_mm", "fill"),
-          optional=("composite", "outline_mm", "conductive", "threads", "state"))
-    pid = _text(obj["id"], f"{path}.id", nonempty=True)
-    piece = _text(obj["piece"], f"{path}.piece", nonempty=True)
+    jc.obj(obj, path, required=("id", "piece", "centre_mm", "diameter_mm", "fill"),
+           optional=("composite", "outline_mm", "conductive", "threads", "state"))
+    pid = jc.text(obj["id"], child(path, "id"), nonempty=True)
+    piece = jc.text(obj["piece"], child(path, "piece"), nonempty=True)
     if piece not in pieces:
-        raise _Invalid(f"{path}.piece", f"{piece!r} is not a piece of this design (pieces: "
-                                        + (", ".join(pieces) or "none") + ")")
-    centre = _point(obj["centre_mm"], f"{path}.centre_mm")
+        jc.fail(child(path, "piece"), f"{piece!r} is not a piece of this design (pieces: "
+                                      + (", ".join(pieces) or "none") + ")")
+    centre = _point(obj["centre_mm"], child(path, "centre_mm"))
     lo, hi = DIAMETER_RANGE_MM
-    d = _number(obj["diameter_mm"], f"{path}.diameter_mm")
-    if not lo <= d <= hi:
-        raise _Invalid(f"{path}.diameter_mm",
-                       f"{obj['diameter_mm']!r} is outside [{lo:g}, {hi:g}] mm")
-    fill = _fraction(obj["fill"], f"{path}.fill")
+    d = jc.number(obj["diameter_mm"], child(path, "diameter_mm"), low=lo, high=hi, unit="mm")
+    fill = _fraction(obj["fill"], child(path, "fill"))
     composite = obj.get("composite")
     if composite is not None:
-        composite = _composite(composite, f"{path}.composite", d)
+        composite = _composite(composite, child(path, "composite"), d)
     outline = obj.get("outline_mm")
     if outline is not None:
-        outline = _outline(outline, f"{path}.outline_mm", d, composite, path)
+        outline = _outline(outline, child(path, "outline_mm"), d, composite,
+                           child(path, "composite"))
     conductive = obj.get("conductive")
     if conductive is not None:
-        conductive = _text(conductive, f"{path}.conductive", nonempty=True)
-        try:
+        conductive = jc.text(conductive, child(path, "conductive"), nonempty=True)
+        with jc.at(child(path, "conductive")):
             parse_selection(conductive)
-        except InvalidInputError as exc:
-            raise _Invalid(f"{path}.conductive", str(exc)) from None
-    threads = _threads(obj.get("threads", {}), f"{path}.threads")
-    state = obj.get("state", "up")
-    if state not in STATES:
-        raise _Invalid(f"{path}.state", f"{state!r} is not one of " + ", ".join(map(repr, STATES)))
+    threads = _threads(obj.get("threads", {}), child(path, "threads"))
+    state = jc.choice(obj.get("state", "up"), child(path, "state"), STATES)
     return PatchSpec(pid, piece, centre, d, fill, composite, outline, conductive, threads, state)
 
 
 def _composite(obj, path, d) -> CompositeSpec:
-    _keys(obj, path, required=("core_diameter_mm", "core_fill"))
-    core = _number(obj["core_diameter_mm"], f"{path}.core_diameter_mm")
-    if not 0.0 < core < d:
-        raise _Invalid(f"{path}.core_diameter_mm",
-                       f"{obj['core_diameter_mm']!r} is outside (0, {d:g}) mm (the patch diameter)")
-    return CompositeSpec(core, _fraction(obj["core_fill"], f"{path}.core_fill"))
+    jc.obj(obj, path, required=("core_diameter_mm", "core_fill"))
+    core = jc.number(obj["core_diameter_mm"], child(path, "core_diameter_mm"), low=0.0, high=d,
+                     low_open=True, high_open=True, unit="mm", note="the patch diameter")
+    return CompositeSpec(core, _fraction(obj["core_fill"], child(path, "core_fill")))
 
 
-def _outline(obj, path, d, composite, patch_path) -> np.ndarray:
+def _outline(obj, path, d, composite, composite_path) -> np.ndarray:
     import shapely
 
     ring = _points(obj, path)
     if composite is None:
-        raise _Invalid(path, f"a custom outline needs {patch_path}.composite (the circular "
-                             "functional core); add a composite or set outline_mm to null")
+        jc.fail(path, f"a custom outline needs {composite_path} (the circular functional "
+                      "core); add a composite or set outline_mm to null")
     if len(ring) < 3:
-        raise _Invalid(path, f"needs at least 3 points, got {len(ring)}")
+        jc.fail(path, f"needs at least 3 points, got {len(ring)}")
     dist = np.hypot(ring[:, 0], ring[:, 1])
     far = int(np.argmax(dist))
     if dist[far] > d / 2.0 + TOL_MM:
-        raise _Invalid(f"{path}[{far}]", f"{ring[far].tolist()} lies {dist[far]:.6g} mm from the "
-                                         f"centre, outside the patch radius {d / 2:g} mm")
+        jc.fail(child(path, far), f"{ring[far].tolist()} lies {dist[far]:.6g} mm from the "
+                                  f"centre, outside the patch radius {d / 2:g} mm")
     poly = shapely.Polygon(ring)
     if not poly.is_valid or poly.area <= TOL_MM:
         reason = shapely.is_valid_reason(poly) if not poly.is_valid else "no area"
-        raise _Invalid(path, f"is not a simple polygon ({reason})")
+        jc.fail(path, f"is not a simple polygon ({reason})")
     rc = composite.core_diameter_mm / 2.0
     origin = shapely.Point(0.0, 0.0)
     gap = poly.exterior.distance(origin)
     if not poly.contains(origin) or gap < rc - TOL_MM:
-        raise _Invalid(path, f"the core disc (diameter {composite.core_diameter_mm:g} mm) is not "
-                             f"inside the outline (closest outline point {gap:.6g} mm from the "
-                             "centre)" if poly.contains(origin) else "does not contain the centre")
+        jc.fail(path, f"the core disc (diameter {composite.core_diameter_mm:g} mm) is not "
+                      f"inside the outline (closest outline point {gap:.6g} mm from the "
+                      "centre)" if poly.contains(origin) else "does not contain the centre")
     return ring
 
 
 def _threads(obj, path) -> Threads:
-    _keys(obj, path, optional=("top", "conductive"))
+    jc.obj(obj, path, optional=("top", "conductive"))
     default = Threads()
-    return Threads(_colour(obj.get("top", default.top), f"{path}.top"),
-                   _colour(obj.get("conductive", default.conductive), f"{path}.conductive"))
+    return Threads(_colour(obj.get("top", default.top), child(path, "top")),
+                   _colour(obj.get("conductive", default.conductive), child(path, "conductive")))
 
 
 def _colour(value, path) -> str:
-    text = _text(value, path)
+    text = jc.text(value, path)
     ok = len(text) == 7 and text[0] == "#" and all(c in "0123456789abcdefABCDEF" for c in text[1:])
     if not ok:
-        raise _Invalid(path, f"{value!r} is not a colour #rrggbb")
+        jc.fail(path, f"{value!r} is not a colour #rrggbb")
     return text.lower()
 
 
 def _material(obj, path) -> MaterialRef:
-    _keys(obj, path, optional=("name", "file"))
+    jc.obj(obj, path, optional=("name", "file"))
     if ("name" in obj) == ("file" in obj):
-        raise _Invalid(path, "give exactly one of 'name' (a built-in material) or 'file'")
+        jc.fail(path, "give exactly one of 'name' (a built-in material) or 'file'")
     if "file" in obj:
-        return MaterialRef(name=None, file=_text(obj["file"], f"{path}.file", nonempty=True))
-    name = _text(obj["name"], f"{path}.name", nonempty=True)
+        return MaterialRef(name=None, file=jc.text(obj["file"], child(path, "file"),
+                                                   nonempty=True))
+    name = jc.text(obj["name"], child(path, "name"), nonempty=True)
     if name != "default":
-        raise _Invalid(f"{path}.name", f"{name!r} is not a built-in material (the built-in "
-                                       "material is 'default'; use 'file' for your own)")
+        jc.fail(child(path, "name"), f"{name!r} is not a built-in material (the built-in "
+                                     "material is 'default'; use 'file' for your own)")
     return MaterialRef(name=name, file=None)
 
 
 def _machine(obj, path) -> MachineSpec:
-    _keys(obj, path, optional=("name", "hoop"))
-    name = _text(obj.get("name", "janome-550e"), f"{path}.name", nonempty=True)
-    try:
-        hoops = machine_hoops(name)
-    except KeyError:
-        raise _Invalid(f"{path}.name", f"unknown machine {name!r} (machines: "
-                                       + ", ".join(machine_names()) + ")") from None
+    jc.obj(obj, path, optional=("name", "hoop"))
+    name_path, hoop_path = child(path, "name"), child(path, "hoop")
+    name = jc.text(obj.get("name", DEFAULT_MACHINE), name_path, nonempty=True)
+    with jc.at(name_path):
+        machine = builtin_catalogue().machine(name)
     hoop = obj.get("hoop")
     if hoop is not None:
-        text = _text(hoop, f"{path}.hoop", nonempty=True)
-        match = [h for h in hoops if h.name.lower() == text.lower()]
-        if not match:
-            raise _Invalid(f"{path}.hoop", f"{hoop!r} is not a hoop of the {name} (hoops: "
-                                           + ", ".join(h.name for h in hoops) + ")")
-        hoop = match[0].name
-    return MachineSpec(name, hoop)
+        with jc.at(hoop_path):
+            hoop = machine.hoop(jc.text(hoop, hoop_path, nonempty=True)).name
+    return MachineSpec(machine.name, hoop)
 
 
 # --- small typed readers ------------------------------------------------------------------
 
-def _kind(value) -> str:
-    return {dict: "an object", list: "an array", str: "a string", bool: "a boolean",
-            type(None): "null"}.get(type(value), "a number")
-
-
-def _keys(obj, path, required=(), optional=()):
-    if not isinstance(obj, dict):
-        raise _Invalid(path, f"must be an object, got {_kind(obj)}")
-    for key in required:
-        if key not in obj:
-            raise _Invalid(f"{path}.{key}" if path != "$" else key, "missing")
-    unknown = [k for k in obj if k not in required and k not in optional]
-    if unknown:
-        where = f"{path}.{unknown[0]}" if path != "$" else unknown[0]
-        raise _Invalid(where, "unknown key (allowed: " + ", ".join((*required, *optional)) + ")")
-
-
-def _list(value, path) -> list:
-    if not isinstance(value, list):
-        raise _Invalid(path, f"must be an array, got {_kind(value)}")
-    return value
-
-
-def _text(value, path, nonempty=False) -> str:
-    if not isinstance(value, str):
-        raise _Invalid(path, f"must be a string, got {_kind(value)}")
-    if nonempty and not value.strip():
-        raise _Invalid(path, "must not be empty")
-    return value
-
-
-def _number(value, path) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise _Invalid(path, f"{value!r} is not a number")
-    if not math.isfinite(value):
-        raise _Invalid(path, f"{value!r} is not a finite number")
-    return float(value)
-
-
 def _fraction(value, path) -> float:
-    v = _number(value, path)
-    if not 0.0 < v <= 1.0:
-        raise _Invalid(path, f"{value!r} is outside (0, 1]")
-    return v
+    return jc.number(value, path, low=0.0, high=1.0, low_open=True)
 
 
 def _point(value, path) -> tuple[float, float]:
     if not isinstance(value, list) or len(value) != 2:
-        raise _Invalid(path, f"must be a pair [x, y], got {json.dumps(value)[:60]}")
-    return (_number(value[0], f"{path}[0]"), _number(value[1], f"{path}[1]"))
+        jc.fail(path, f"must be a pair [x, y], got {jc.show(value)}")
+    return (jc.number(value[0], child(path, 0)), jc.number(value[1], child(path, 1)))
 
 
 def _points(value, path) -> np.ndarray:
-    pts = [_point(p, f"{path}[{i}]") for i, p in enumerate(_list(value, path))]
+    pts = jc.items(value, path, _point)
     return np.asarray(pts, dtype=float).reshape(-1, 2)
 
 

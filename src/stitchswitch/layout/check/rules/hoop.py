@@ -5,22 +5,21 @@ from __future__ import annotations
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.check.rules.footprint import hoop_extent_mm
 from stitchswitch.layout.check.violation import Violation
-from stitchswitch.layout.garment.design_io import machine_hoops
+from stitchswitch.layout.embroidery.machines import builtin_catalogue
 
 RULE = "hoop-fit"
 DEFAULT_MARGIN_MM = 5.0        # when the hoop record carries no margin
 
 
 def check(design, limits, eta) -> list[Violation]:
-    hoops = machine_hoops(design.machine.name)
+    machine = builtin_catalogue().machine(design.machine.name)
     if design.machine.hoop is not None:
-        match = [h for h in hoops if h.name.lower() == design.machine.hoop.lower()]
-        if not match:
-            raise InvalidInputError(f"machine.hoop: {design.machine.hoop!r} is not a hoop of the "
-                                    f"{design.machine.name}")
-        hoop = match[0]
+        try:
+            hoop = machine.hoop(design.machine.hoop)
+        except InvalidInputError as exc:
+            raise InvalidInputError(f"machine.hoop: {exc}") from None
     else:
-        hoop = max(hoops, key=lambda h: h.width_mm * h.height_mm)
+        hoop = machine.largest_hoop()
     margin = (limits.hoop_margin_mm if limits.hoop_margin_mm is not None
               else getattr(hoop, "margin_mm", DEFAULT_MARGIN_MM))
     side = min(hoop.width_mm, hoop.height_mm)
