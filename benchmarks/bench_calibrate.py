@@ -45,7 +45,7 @@ def main(argv=None) -> int:
 
     data = load_measurements(ROOT / "src" / "stitchswitch" / "data" / "measured_synthetic.csv")
     train, val = data.split("train"), data.split("val")
-    designs = [(r.d_mm, r.fill) for r in train]
+    designs = [(r.diameter_mm, r.fill) for r in train]
     measured = data.keypoints("train")
     true = _generator().true_material()
     t = time.perf_counter()
@@ -55,7 +55,7 @@ def main(argv=None) -> int:
     seconds = time.perf_counter() - t
     true_pred, _ = cal.predict_keypoints(true, designs)
     start_pred, _ = cal.predict_keypoints(DEFAULT_MATERIAL, designs)
-    val_pred, _ = cal.predict_keypoints(result.material, [(r.d_mm, r.fill) for r in val])
+    val_pred, _ = cal.predict_keypoints(result.material, [(r.diameter_mm, r.fill) for r in val])
     val_mae = np.mean(np.abs(val_pred - data.keypoints("val")), axis=0)
     out = {
         "n_train": len(train), "workers": args.workers, "maxiter": args.maxiter,

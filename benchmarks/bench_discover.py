@@ -138,7 +138,7 @@ def _oracle(disc, clean, source, values, executor) -> dict:
     from stitchswitch.validation.discovery.workflow import DiscoveryConfig
 
     tr, va = disc.split == "train", disc.split == "val"
-    designs = np.column_stack([disc.d_mm, disc.fill])
+    designs = np.column_stack([disc.diameter_mm, disc.fill])
     spec = ModelSpec(START_MATERIAL, source, BASE_FREE)
     ev = Evaluator(executor)
     f = fit(spec, ev, designs[tr], disc.measured[tr], spec.encode(TRUE_MATERIAL, values),

@@ -22,7 +22,7 @@ class Row:
     """One design: the shell solve from the reduced start and by continuation (times in s,
     relative keypoint differences of the continuation against the reduced start)."""
 
-    d_mm: float
+    diameter_mm: float
     fill: float
     fem_s: float
     reduced_s: float
@@ -40,7 +40,9 @@ class Row:
     continuation_lowest_eigenvalue: float
 
     def as_dict(self) -> dict:
-        return asdict(self)
+        """The fields, in order, with the diameter under the output's key ``d_mm``."""
+        out = asdict(self)
+        return {"d_mm": out.pop("diameter_mm"), **out}
 
 
 def _designs(text):
@@ -80,7 +82,7 @@ def main(argv=None) -> int:
         t_cont = time.perf_counter() - t
         kp, kc = keypoints_from_profile(*sol.sample()), keypoints_from_profile(*cont.solution.sample())
         rel = max(abs(getattr(kc, k) - getattr(kp, k)) / abs(getattr(kp, k)) for k in KEYS)
-        rows.append(Row(d_mm=d, fill=p, fem_s=t_fem, reduced_s=t_red,
+        rows.append(Row(diameter_mm=d, fill=p, fem_s=t_fem, reduced_s=t_red,
                         converged=bool(sol.converged), iterations=int(sol.iterations),
                         dofs=int(2 * model.n), continuation_s=t_cont,
                         continuation_converged=bool(cont.converged),
@@ -102,7 +104,7 @@ def main(argv=None) -> int:
                           "continuation_same_equilibrium": same}, indent=1))
     else:
         for r in rows:
-            print(f"d {r.d_mm:5g} p {r.fill:4g}: from reduced {r.fem_s:.2f} s ({r.iterations} "
+            print(f"d {r.diameter_mm:5g} p {r.fill:4g}: from reduced {r.fem_s:.2f} s ({r.iterations} "
                   f"it, {r.dofs} dofs, conv {r.converged}; reduced solve "
                   f"{1e3 * r.reduced_s:.0f} ms) | continuation {r.continuation_s:.2f} s "
                   f"({r.continuation_iterations} it, {r.continuation_stages} stages, "

@@ -11,7 +11,7 @@ from stitchswitch.reduced.model.material_io import save_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
 KEYS = ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm", "energy", "residual", "converged",
-        "iterations", "solve_ms")
+        "iterations", "solve_s")
 
 
 def run(*args):

@@ -57,7 +57,7 @@ def test_r2_and_mae_match_hand_computation():
     val = [ForceSample(30.0, 0.7, 0.2, "val"), ForceSample(50.0, 0.9, 0.4, "val"),
            ForceSample(45.0, 0.65, 0.1, "val")]
     fit = fit_force_model(train + val)
-    pred = [float(fit.model.predict(r.d_mm, r.fill)) for r in val]
+    pred = [float(fit.model.predict(r.diameter_mm, r.fill)) for r in val]
     y = [0.2, 0.4, 0.1]
     mean = sum(y) / 3
     ss_res = sum((a - b) ** 2 for a, b in zip(y, pred))
@@ -65,7 +65,7 @@ def test_r2_and_mae_match_hand_computation():
     assert fit.r2_val == pytest.approx(1 - ss_res / ss_tot, rel=1e-12)
     assert fit.mae_val_N == pytest.approx(sum(abs(a - b) for a, b in zip(y, pred)) / 3, rel=1e-12)
     yt = [r.force_N for r in train]
-    pt = [float(fit.model.predict(r.d_mm, r.fill)) for r in train]
+    pt = [float(fit.model.predict(r.diameter_mm, r.fill)) for r in train]
     mt = sum(yt) / 9
     assert fit.r2_train == pytest.approx(
         1 - sum((a - b) ** 2 for a, b in zip(yt, pt)) / sum((a - mt) ** 2 for a in yt), rel=1e-12)
@@ -93,15 +93,15 @@ def test_shipped_dataset_is_labelled_synthetic_and_has_the_papers_design():
     assert source.startswith("synthetic") and "NOT measured" in source
     train = [r for r in rows if r.split == "train"]
     val = [r for r in rows if r.split == "val"]
-    assert sorted((r.d_mm, r.fill) for r in train) == sorted((d, p) for d in TRAIN_D for p in TRAIN_P)
-    assert len(val) == 28 and all(20 <= r.d_mm <= 90 and 0.6 <= r.fill <= 1.0 for r in val)
+    assert sorted((r.diameter_mm, r.fill) for r in train) == sorted((d, p) for d in TRAIN_D for p in TRAIN_P)
+    assert len(val) == 28 and all(20 <= r.diameter_mm <= 90 and 0.6 <= r.fill <= 1.0 for r in val)
     f = np.array([r.force_N for r in train])
     assert 0.0 < f.min() < 0.1 and 0.65 < f.max() < 0.9       # paper: 0.04-0.77 N
 
 
 def test_shipped_forces_increase_with_d_and_p():
     rows, _ = load_force_csv(str(default_force_csv_path()))
-    train = np.array([(r.d_mm, r.fill, r.force_N) for r in rows if r.split == "train"])
+    train = np.array([(r.diameter_mm, r.fill, r.force_N) for r in rows if r.split == "train"])
     for col, levels in ((0, TRAIN_D), (1, TRAIN_P)):
         means = [train[train[:, col] == v, 2].mean() for v in levels]
         assert np.all(np.diff(means) > 0)

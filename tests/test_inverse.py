@@ -8,7 +8,7 @@ from stitchswitch.reduced.design_space.inverse_mip import select
 
 
 def _check_confirmed(c):
-    sol = solve(Patch(c.d_mm, c.fill))
+    sol = solve(Patch(c.diameter_mm, c.fill))
     assert c.h_mm == pytest.approx(sol.keypoints.h_mm, abs=1e-12)
     assert c.converged and c.residual <= 1e-9
 
@@ -20,7 +20,7 @@ def test_suggestions_meet_the_target_and_are_direct_solves(height):
     for c in result.candidates:
         assert abs(c.h_mm - height) <= HEIGHT_TOL_MM
         _check_confirmed(c)
-    ds = [c.d_mm for c in result.candidates]
+    ds = [c.diameter_mm for c in result.candidates]
     assert len(set(np.round(ds, 1))) == len(ds)                      # distinct alternatives
     assert result.selection.status == "optimal"
 
@@ -30,7 +30,7 @@ def test_bounds_are_respected():
     result = inverse_design(target)
     assert result.candidates
     for c in result.candidates:
-        assert c.d_mm <= 60.0 and c.fill >= 0.8 - 1e-12 and 0.1 <= c.force_N <= 0.4
+        assert c.diameter_mm <= 60.0 and c.fill >= 0.8 - 1e-12 and 0.1 <= c.force_N <= 0.4
         assert abs(c.h_mm - 15.0) <= HEIGHT_TOL_MM
 
 
@@ -77,5 +77,5 @@ def test_selection_program_picks_the_cheapest_per_bin():
 def test_force_extrapolation_is_flagged():
     result = inverse_design(InverseTarget(17.5, count=5))
     for c in result.candidates:
-        outside = not (20.0 <= c.d_mm <= 90.0 and 0.6 <= c.fill <= 1.0)
+        outside = not (20.0 <= c.diameter_mm <= 90.0 and 0.6 <= c.fill <= 1.0)
         assert c.force_extrapolated is outside

@@ -44,7 +44,7 @@ def test_valid_file_rows_arrays_and_provenance():
     assert data.rows[1].force_N is None and data.rows[1].notes == "photo 2, left"
     assert [r.sample_id for r in data.split("train")] == ["A1", "A2"]
     assert [r.sample_id for r in data.split("val")] == ["B1"]
-    np.testing.assert_array_equal(data.array("d_mm"), [40, 60, 50])
+    np.testing.assert_array_equal(data.array("diameter_mm"), [40, 60, 50])
     np.testing.assert_array_equal(data.array("h", "val"), [14.8])
     np.testing.assert_array_equal(data.array("force_N"), [0.21, np.nan, 0.3])
     kp = data.keypoints("train")
@@ -58,7 +58,7 @@ def test_minimal_columns_any_order_and_no_source():
     text = "split,z_b_mm,r_b_mm,z_a_mm,r_a_mm,h_mm,fill,d_mm\ntrain,1,2,3,4,5,0.5,20\nval,0,2,0,4,0,1,150\n"
     data = parse_measurements(text)
     assert data.source == "unspecified" and not data.synthetic
-    assert data.rows[0].h_mm == 5 and data.rows[0].d_mm == 20 and data.rows[0].sample_id == ""
+    assert data.rows[0].h_mm == 5 and data.rows[0].diameter_mm == 20 and data.rows[0].sample_id == ""
     assert data.rows[1].label == "line 3"
 
 

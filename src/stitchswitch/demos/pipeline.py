@@ -36,7 +36,7 @@ class DemoRun:
     files: tuple[str, ...]
     hoopings: int
     violations: int
-    seconds: float
+    elapsed_s: float
 
 
 def run_demo(demo, outdir, *, force: bool = False, echo=print, time_limit_s: float = 10.0) -> DemoRun:

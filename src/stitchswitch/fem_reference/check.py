@@ -80,7 +80,7 @@ class DesignCheck:
     its self error (half the elements, relative), the reduced model at every N of ``NODES``,
     and the relative gap at N = 300 with the hoop term's node-averaged quadrature."""
 
-    d_mm: float
+    diameter_mm: float
     fill: float
     reference_mm: dict
     reference_converged: bool
@@ -97,7 +97,7 @@ class DesignCheck:
         return convergence(self)
 
     def as_dict(self) -> dict:
-        return {"d_mm": self.d_mm, "fill": self.fill, "reference": dict(self.reference_mm),
+        return {"d_mm": self.diameter_mm, "fill": self.fill, "reference": dict(self.reference_mm),
                 "reference_converged": self.reference_converged,
                 "reference_residual": self.reference_residual,
                 "reference_self_error": dict(self.reference_self_error_rel),
@@ -156,7 +156,7 @@ def check_design(patch: Patch, material: Material = DEFAULT_MATERIAL, *, hoop_be
 
     variant = _reduced(patch, material, 300, HOOP_NODE_AVERAGE_TERMS).keypoints
     return DesignCheck(
-        d_mm=patch.diameter_mm, fill=patch.fill, reference_mm=ref_kp,
+        diameter_mm=patch.diameter_mm, fill=patch.fill, reference_mm=ref_kp,
         reference_converged=bool(ref.converged), reference_residual=ref.residual,
         reference_self_error_rel={k: _rel(getattr(kp_half, k), ref_kp[k]) for k in KEYS},
         reduced=tuple(ReducedSolve(n, bool(sol.converged),
@@ -197,7 +197,7 @@ def table(result: FemCheck) -> str:
     for r in result.rows:
         for k in KEYS:
             rel = " ".join(f"{100 * r.at(n).rel[k]:+7.2f}%" for n in NODES)
-            lines.append(f"{r.d_mm:5g} {r.fill:4g} {k[:-3]:>6} {r.reference_mm[k]:9.3f} "
+            lines.append(f"{r.diameter_mm:5g} {r.fill:4g} {k[:-3]:>6} {r.reference_mm[k]:9.3f} "
                          f"{rel} {100 * r.reference_self_error_rel[k]:+7.2f}%")
     lines.append("columns N=...: (reduced - reference) / reference; ref.err: the reference with "
                  "half the elements against itself")
@@ -209,7 +209,7 @@ def table(result: FemCheck) -> str:
                  "node-averaged coefficients at the boundary:")
     for r in result.rows:
         a, b = r.at(300).rel["h_mm"], r.hoop_node_average_300_rel["h_mm"]
-        lines.append(f"  d {r.d_mm:g}, p {r.fill:g}: {100 * a:+.2f} % -> {100 * b:+.2f} %")
+        lines.append(f"  d {r.diameter_mm:g}, p {r.fill:g}: {100 * a:+.2f} % -> {100 * b:+.2f} %")
     failing = [r for r in result.rows if abs(r.at(300).rel["h_mm"]) > TARGETS["h_mm"]]
     if failing:
         lines.append("designs missing the h target at N = 300: measured convergence of the gap "
@@ -217,6 +217,6 @@ def table(result: FemCheck) -> str:
     for r in failing:
         c = r.h_convergence
         need = "not converging" if c.nodes_for_limit is None else f"N ~ {c.nodes_for_limit}"
-        lines.append(f"  d {r.d_mm:g}, p {r.fill:g}: observed order {c.order:.2f}; "
+        lines.append(f"  d {r.diameter_mm:g}, p {r.fill:g}: observed order {c.order:.2f}; "
                      f"extrapolated N for {100 * TARGETS['h_mm']:g} %: {need}")
     return "\n".join(lines)

@@ -41,9 +41,10 @@ MAX_LENGTH_MM = 200.0
 @dataclass(frozen=True)
 class Measurement:
     """One fabricated patch: its design (d on the pre-stretched fabric, fill), its five
-    measured keypoints (mm), its split, and where it came from (``line`` of the file)."""
+    measured keypoints (mm), its split, and where it came from (``line`` of the file).
+    ``diameter_mm`` is the file's column ``d_mm``."""
 
-    d_mm: float
+    diameter_mm: float
     fill: float
     h_mm: float
     r_a_mm: float
@@ -60,6 +61,10 @@ class Measurement:
     def label(self) -> str:
         """``sample_id`` if given, else ``line N``."""
         return self.sample_id or f"line {self.line}"
+
+
+#: The ``Measurement`` field of each column whose name differs from it.
+_FIELD_OF_COLUMN = {"d_mm": "diameter_mm"}
 
 
 def _field_name(name: str) -> str:
@@ -89,7 +94,7 @@ class MeasuredData:
 
     def array(self, field: str, split: str | None = None) -> np.ndarray:
         """One numeric column as a float array (all rows, or one split). ``field`` is a
-        ``Measurement`` field (``d_mm``, ``h_mm``, ``force_N``...) or a quantity name of
+        ``Measurement`` field (``diameter_mm``, ``h_mm``, ``force_N``...) or a quantity name of
         ``QUANTITIES`` (``"h"`` means ``h_mm``); a missing force is nan."""
         name = _field_name(field)
         numeric = {f.name for f in dataclasses.fields(Measurement)} - {"split", "sample_id", "notes"}
@@ -147,8 +152,9 @@ def _row(cells: list[str], header: list[str], where: str, lineno: int) -> Measur
     f = dict(zip(header, cells))
     values = {}
     for c in REQUIRED_COLUMNS[:-1]:
-        values[c] = csv_number(f[c], where, c)
-        _check_range(values[c], where, c)
+        value = csv_number(f[c], where, c)
+        _check_range(value, where, c)
+        values[_FIELD_OF_COLUMN.get(c, c)] = value
     if f["split"] not in SPLITS:
         raise InvalidInputError(f"{where}, column split: {f['split']!r} is not train or val")
     force = None

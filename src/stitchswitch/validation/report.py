@@ -86,13 +86,13 @@ def predict(data: MeasuredData, material: Material) -> Predictions:
 
     cache = {}
     for r in data.rows:
-        key = (r.d_mm, r.fill)
+        key = (r.diameter_mm, r.fill)
         if key not in cache:
-            sol = solve(Patch(r.d_mm, r.fill), material)
+            sol = solve(Patch(r.diameter_mm, r.fill), material)
             kp = sol.keypoints
             cache[key] = ((kp.h_mm, kp.r_a_mm, kp.z_a_mm, kp.r_b_mm, kp.z_b_mm),
                           sol.converged, sol.residual, kp.b_rule)
-    rows = [cache[(r.d_mm, r.fill)] for r in data.rows]
+    rows = [cache[(r.diameter_mm, r.fill)] for r in data.rows]
     values = np.array([v for v, *_ in rows], dtype=float).reshape(len(rows), len(QUANTITIES))
     return Predictions(values=values, converged=np.array([c for _, c, _, _ in rows], bool),
                        residual=np.array([res for _, _, res, _ in rows], float),
@@ -177,7 +177,7 @@ def _figures(data: MeasuredData, pred: Predictions, material: Material, tmp: Pat
     fig.tight_layout(h_pad=2.0)
     (tmp / "all_quantities.png").write_bytes(_png(fig))
     dmap = map_for(material, coarse=True)
-    points = {f"{s} data ({len(data.split(s))})": (data.array("d_mm", s), data.array("fill", s))
+    points = {f"{s} data ({len(data.split(s))})": (data.array("diameter_mm", s), data.array("fill", s))
               for s in SPLITS}
     plot_height_map(dmap, tmp / "height_map.png", points=points,
                     title=f"Predicted h(d, p) with the data, material {dmap.material_hash[:10]}")
@@ -205,7 +205,7 @@ def _report_dict(data: MeasuredData, pred: Predictions, material: Material, labe
     rows = []
     for i, r in enumerate(data.rows):
         rows.append({
-            "line": r.line, "sample_id": r.sample_id, "split": r.split, "d_mm": r.d_mm,
+            "line": r.line, "sample_id": r.sample_id, "split": r.split, "d_mm": r.diameter_mm,
             "fill": r.fill,
             "measured": {q: getattr(r, f"{q}_mm") for q in QUANTITIES},
             "predicted": {q: float(pred.values[i, k]) for k, q in enumerate(QUANTITIES)},

@@ -27,7 +27,7 @@ def demo(name, outdir, force, time_limit_s):
     check_outdir(outdir, force)          # refuse before any work
     click.echo(f"stitchswitch demo {spec.name}: {spec.title} (paper, section {spec.paper_section})")
     run = run_demo(spec, outdir, force=force, echo=click.echo, time_limit_s=time_limit_s)
-    click.echo(f"finished in {run.seconds:.1f} s: {run.hoopings} hooping(s), "
+    click.echo(f"finished in {run.elapsed_s:.1f} s: {run.hoopings} hooping(s), "
                f"{run.violations} constraint violation(s)")
     click.echo(f"outputs in {run.outdir}/:")
     for f in run.files:

@@ -75,7 +75,7 @@ def calibrate(data_path, material_path, maxiter, popsize, seed, workers, schedul
     start = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
     start_label = str(material_path) if material_path else "default"
     train = data.split("train")
-    designs = [(r.d_mm, r.fill) for r in train]
+    designs = [(r.diameter_mm, r.fill) for r in train]
     measured = data.keypoints("train")
     sidecar = out.with_name(out.stem + ".calibration.json")
     if resume:
@@ -97,7 +97,7 @@ def calibrate(data_path, material_path, maxiter, popsize, seed, workers, schedul
 
     def progress(gen, material, mse):
         _write(out, _record(material, mse, data, settings, start_label, generations=gen,
-                            seconds=round(time.perf_counter() - t0, 2), message="in progress",
+                            elapsed_s=round(time.perf_counter() - t0, 2), message="in progress",
                             interrupted=False))
         click.echo(f"generation {gen}/{maxiter}: train MSE {mse:.4f} mm^2 "
                    f"({time.perf_counter() - t0:.0f} s)", err=True)
@@ -108,7 +108,7 @@ def calibrate(data_path, material_path, maxiter, popsize, seed, workers, schedul
                                callback=progress)
     record = _record(result.material, result.mse_mm2, data, settings, start_label,
                      generations=result.generations, evaluations=result.evaluations,
-                     seconds=round(result.seconds, 2), message=result.message,
+                     elapsed_s=round(result.elapsed_s, 2), message=result.message,
                      interrupted=result.interrupted, identifiability=result.identifiability)
     _write(out, record)
     if as_json:
@@ -117,7 +117,7 @@ def calibrate(data_path, material_path, maxiter, popsize, seed, workers, schedul
     rmse = math.sqrt(result.mse_mm2) if math.isfinite(result.mse_mm2) else float("nan")
     state = "interrupted, best point so far" if result.interrupted else result.message
     click.echo(f"wrote {out} ({state}); train RMSE {rmse:.3f} mm over {len(train)} rows, "
-               f"{result.generations} generations in {result.seconds:.0f} s")
+               f"{result.generations} generations in {result.elapsed_s:.0f} s")
     for name in cal.PARAMS:
         tag = " (fixed: overall scale)" if name == cal.SCALE_PARAM else ""
         click.echo(f"  {name:12s} {getattr(result.material, name):10.4g}{tag}")

@@ -58,21 +58,21 @@ def precompute(material_path, diameters, fills, workers, scheduler, out, plot, c
 
         dmap = build_map.build(material, d, p, workers=workers, progress=progress,
                                scheduler=scheduler, warm_start=not cold_start)
-    seconds = time.perf_counter() - t0
+    elapsed_s = time.perf_counter() - t0
     map_io.save_map(dmap, out)
     if plot is not None:
         from stitchswitch.reduced.design_space.heatmap import plot_height_map
         plot_height_map(dmap, plot)
     flagged = map_check.report(dmap)
     summary = {"out": str(out), "n_diameters": int(d.size), "n_fills": int(p.size),
-               "seconds": round(seconds, 2), "workers": workers,
+               "elapsed_s": round(elapsed_s, 2), "workers": workers,
                "all_converged": bool(dmap.converged.all()),
                "max_residual": float(dmap.residual.max()),
                "material_hash": dmap.material_hash, "flagged": flagged}
     if as_json:
         click.echo(json.dumps(summary))
         return
-    click.echo(f"wrote {out}: {d.size} x {p.size} designs in {seconds:.1f} s on {workers} "
+    click.echo(f"wrote {out}: {d.size} x {p.size} designs in {elapsed_s:.1f} s on {workers} "
                f"worker(s); all certified: {'yes' if summary['all_converged'] else 'NO'} "
                f"(max residual {summary['max_residual']:.1e})")
     if plot is not None:

@@ -68,7 +68,7 @@ def table(sol: Solution, material_path=None) -> str:
         ("residual", f"{sol.residual:.2e}  (tol {sol.tol:.0e})"),
         ("converged", "yes" if sol.converged else "NO"),
         ("iterations", str(sol.iterations)),
-        ("solve time", f"{sol.solve_ms:.0f} ms"),
+        ("solve time", f"{sol.solve_s * 1e3:.0f} ms"),
     ]
     return key_value_table(rows)
 

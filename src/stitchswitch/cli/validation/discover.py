@@ -127,10 +127,10 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
     if json_out == "-":
         click.echo(report_json(rep), nl=False)
         return
-    click.echo(summary(rep, disc.seconds, disc.solves, report_dir, json_out))
+    click.echo(summary(rep, disc.elapsed_s, disc.solves, report_dir, json_out))
 
 
-def summary(rep: dict, seconds: float, solves: int, report_dir, json_out) -> str:
+def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> str:
     """The ranking, the verdict and the before/after table as text."""
     from stitchswitch.validation.measured import QUANTITIES
 
@@ -158,7 +158,7 @@ def summary(rep: dict, seconds: float, solves: int, report_dir, json_out) -> str
         lines.append(f"{'MAE ' + which:10s} " +
                      " ".join(f"{rep[which][q]['mae_mm']:7.2f}" for q in QUANTITIES))
     lines.append("")
-    lines.append(f"{solves} solves in {seconds:.0f} s")
+    lines.append(f"{solves} solves in {elapsed_s:.0f} s")
     if report_dir:
         lines.append(f"report: {pathlib.Path(report_dir) / 'report.html'} (also report.md, "
                      "report.json, PNGs)")

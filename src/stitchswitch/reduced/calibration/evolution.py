@@ -96,7 +96,7 @@ class CalibrationResult:
     fixed: dict
     generations: int
     evaluations: int
-    seconds: float
+    elapsed_s: float
     message: str
     identifiability: dict = field(default_factory=dict)
     interrupted: bool = False
@@ -134,7 +134,7 @@ def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize:
               callback=None, check_identifiability: bool = True) -> CalibrationResult:
     """Differential evolution (scipy) over the free parameters; see the module docstring.
 
-    ``designs``: [(d_mm, fill)] of the training rows; ``measured``: (n, 5) keypoints.
+    ``designs``: [(diameter_mm, fill)] of the training rows; ``measured``: (n, 5) keypoints.
     ``executor``: a map-like (``stitchswitch.executor``) for parallel evaluation.
     ``x0``: a starting point in the search space (resume from a checkpoint).
     ``callback(generation, best_material, best_mse)`` after every generation; it may raise
@@ -173,9 +173,9 @@ def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize:
     except KeyboardInterrupt:
         interrupted = True
         best_x, best_f, message, nfev = state["best_x"], state["best_f"], "interrupted", -1
-    seconds = time.perf_counter() - t0
+    elapsed_s = time.perf_counter() - t0
     material = _from_x(best_x, free, start)
     ident = identifiability(objective, np.asarray(best_x)) if check_identifiability and not interrupted else {}
     fixed = {n: getattr(start, n) for n in PARAMS if n not in free}
-    return CalibrationResult(material, best_f, free, fixed, state["gen"], nfev, seconds, message,
+    return CalibrationResult(material, best_f, free, fixed, state["gen"], nfev, elapsed_s, message,
                              ident, interrupted)

@@ -34,7 +34,7 @@ FLAG_NAMES = {FLAG_SMOOTH: "smooth", FLAG_BRANCH: "branch change",
 class MapQuery:
     """Interpolated keypoints (n,) and, if asked for, profiles (n, N) in mm."""
 
-    d_mm: np.ndarray
+    diameter_mm: np.ndarray
     fill: np.ndarray
     h_mm: np.ndarray
     r_a_mm: np.ndarray
@@ -104,7 +104,7 @@ class DesignMap:
             values[name] = sum(w * table[a, b] for a, b, w in corners)
         if profiles:
             values.update(self._profiles(d, corners))
-        return MapQuery(d_mm=d, fill=p, **values)
+        return MapQuery(diameter_mm=d, fill=p, **values)
 
     def _profiles(self, d: np.ndarray, corners) -> dict:
         from stitchswitch.reduced.model.discretization import n_inside_array

@@ -45,8 +45,8 @@ REQUIRED_COLUMNS = ("d_mm", "fill", "force_N", "split")
 SPLITS = ("train", "val")
 
 
-def _features(d_mm, fill) -> np.ndarray:
-    d, p = np.broadcast_arrays(np.asarray(d_mm, float), np.asarray(fill, float))
+def _features(diameter_mm, fill) -> np.ndarray:
+    d, p = np.broadcast_arrays(np.asarray(diameter_mm, float), np.asarray(fill, float))
     return np.stack([np.ones_like(d), d, p, d * d, p * p, d * p], axis=-1)
 
 
@@ -70,9 +70,9 @@ class ForceModel:
     def coefficients(self) -> np.ndarray:
         return np.array([getattr(self, f.name) for f in fields(self)])
 
-    def predict(self, d_mm, fill) -> np.ndarray:
-        """Switching force in N; d_mm and fill broadcast (scalars give a 0-d array)."""
-        return _features(d_mm, fill) @ self.coefficients
+    def predict(self, diameter_mm, fill) -> np.ndarray:
+        """Switching force in N; diameter_mm and fill broadcast (scalars give a 0-d array)."""
+        return _features(diameter_mm, fill) @ self.coefficients
 
     def as_dict(self) -> dict:
         return {f.name: getattr(self, f.name) for f in fields(self)}
@@ -80,9 +80,9 @@ class ForceModel:
 
 @dataclass(frozen=True)
 class ForceSample:
-    """One row of a force table."""
+    """One row of a force table (``diameter_mm`` is the column ``d_mm``)."""
 
-    d_mm: float
+    diameter_mm: float
     fill: float
     force_N: float
     split: str
@@ -104,9 +104,9 @@ class ForceFit:
     d_range_mm: tuple[float, float]
     fill_range: tuple[float, float]
 
-    def extrapolates(self, d_mm: float, fill: float) -> bool:
+    def extrapolates(self, diameter_mm: float, fill: float) -> bool:
         """True if (d, p) lies outside the min/max box of the train designs."""
-        return not (self.d_range_mm[0] <= d_mm <= self.d_range_mm[1]
+        return not (self.d_range_mm[0] <= diameter_mm <= self.d_range_mm[1]
                     and self.fill_range[0] <= fill <= self.fill_range[1])
 
     def as_dict(self) -> dict:
@@ -131,7 +131,7 @@ def fit_force_model(rows, source: str = "unspecified") -> ForceFit:
     if len(split["train"]) < 6:
         raise InvalidInputError(f"force data ({source}): {len(split['train'])} train rows, "
                                 "need at least 6 for the six polynomial coefficients")
-    arr = {s: np.array([(r.d_mm, r.fill, r.force_N) for r in split[s]], float) for s in SPLITS}
+    arr = {s: np.array([(r.diameter_mm, r.fill, r.force_N) for r in split[s]], float) for s in SPLITS}
     X, y = _features(arr["train"][:, 0], arr["train"][:, 1]), arr["train"][:, 2]
     coef, _, rank, _ = np.linalg.lstsq(X, y, rcond=None)
     if rank < 6:

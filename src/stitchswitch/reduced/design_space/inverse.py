@@ -62,7 +62,7 @@ class InverseTarget:
 
 @dataclass(frozen=True)
 class Candidate:
-    d_mm: float
+    diameter_mm: float
     fill: float
     h_mm: float
     r_a_mm: float
@@ -77,7 +77,9 @@ class Candidate:
     converged: bool
 
     def as_dict(self) -> dict:
-        return dict(self.__dict__)
+        """The fields, in order, with the diameter under the output's key ``d_mm``."""
+        out = dict(self.__dict__)
+        return {"d_mm": out.pop("diameter_mm"), **out}
 
 
 def _default_force():
@@ -157,7 +159,7 @@ def inverse_design(target: InverseTarget, dmap: DesignMap | None = None,
     out.sort(key=lambda c: abs(c.height_error_mm) + abs(c.radius_error_mm or 0.0))
     distinct = []
     for c in out:               # refinements from neighbouring bins may meet at one design
-        if all(abs(c.d_mm - o.d_mm) > 0.5 or abs(c.fill - o.fill) > 0.005 for o in distinct):
+        if all(abs(c.diameter_mm - o.diameter_mm) > 0.5 or abs(c.fill - o.fill) > 0.005 for o in distinct):
             distinct.append(c)
     return InverseResult(distinct, (float(h_lo), float(h_hi)), choice)
 
@@ -198,7 +200,7 @@ def _confirm(dmap, target, d, p, force, p_min, extrapolates=None) -> Candidate:
             sol = solve(Patch(d, p), material)
     kp = sol.keypoints
     return Candidate(
-        d_mm=float(d), fill=float(p), **{name: float(getattr(kp, name)) for name in KEYPOINTS},
+        diameter_mm=float(d), fill=float(p), **{name: float(getattr(kp, name)) for name in KEYPOINTS},
         force_N=float(np.asarray(force(np.array([d]), np.array([p])))[0]),
         force_extrapolated=None if extrapolates is None else bool(extrapolates(d, p)),
         height_error_mm=float(kp.h_mm - target.height_mm),

@@ -34,7 +34,7 @@ class Selection:
     mip_gap: float | None
 
 
-def select(cost: np.ndarray, d_mm: np.ndarray, fill: np.ndarray, force_N: np.ndarray, *,
+def select(cost: np.ndarray, diameter_mm: np.ndarray, fill: np.ndarray, force_N: np.ndarray, *,
            count: int, bin_width_mm: float, bin_origin_mm: float = 0.0,
            d_max: float = np.inf, p_min: float = -np.inf,
            force_range=(-np.inf, np.inf)) -> Selection:
@@ -43,9 +43,9 @@ def select(cost: np.ndarray, d_mm: np.ndarray, fill: np.ndarray, force_N: np.nda
     import cvxpy as cp
 
     n = cost.size
-    bins = np.floor((d_mm - bin_origin_mm) / bin_width_mm).astype(int)
+    bins = np.floor((diameter_mm - bin_origin_mm) / bin_width_mm).astype(int)
     lo, hi = force_range
-    feasible = (d_mm <= d_max) & (fill >= p_min) & (force_N >= lo) & (force_N <= hi)
+    feasible = (diameter_mm <= d_max) & (fill >= p_min) & (force_N >= lo) & (force_N <= hi)
     k = min(count, np.unique(bins[feasible]).size)
     if k == 0:
         return Selection(np.array([], dtype=int), 0.0, "infeasible", 0.0, None)
@@ -55,7 +55,7 @@ def select(cost: np.ndarray, d_mm: np.ndarray, fill: np.ndarray, force_N: np.nda
     big = lambda v: np.where(np.isfinite(v), v, 0.0)  # noqa: E731 - an infinite bound is no bound
     constraints = [cp.sum(x) == k, member @ x <= 1]
     if np.isfinite(d_max):
-        constraints.append(cp.multiply(d_mm - d_max, x) <= 0)
+        constraints.append(cp.multiply(diameter_mm - d_max, x) <= 0)
     if np.isfinite(p_min):
         constraints.append(cp.multiply(p_min - fill, x) <= 0)
     if np.isfinite(lo):

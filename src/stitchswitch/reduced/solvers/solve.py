@@ -25,6 +25,7 @@ class Solution:
     boundary. ``residual``: max-norm of the projected gradient of the bound-constrained problem
     (dimensionless, dR units). ``converged``: residual <= tol. ``second_order``: the reduced
     Hessian at the solution is positive definite (a strict local minimum); None if not checked.
+    ``solve_s``: wall time of the solve in seconds.
     """
 
     patch: Patch
@@ -39,7 +40,7 @@ class Solution:
     residual: float
     converged: bool
     iterations: int
-    solve_ms: float
+    solve_s: float
     message: str
     second_order: bool | None = None
     tol: float = DEFAULT_TOL
@@ -62,7 +63,7 @@ class Solution:
             "r_b_mm": kp.r_b_mm, "z_b_mm": kp.z_b_mm, "r_b_rule": kp.b_rule,
             "energy": self.energy, "residual": self.residual, "converged": self.converged,
             "second_order": self.second_order, "iterations": self.iterations,
-            "solve_ms": self.solve_ms, "message": self.message,
+            "solve_s": self.solve_s, "message": self.message,
             "n_nodes": int(self.r_mm.size), "n_inside": self.n_inside, "dr_mm": self.dr_mm,
         }
 
@@ -142,12 +143,12 @@ def _solve(patch: Patch, material: Material, *, solver: str, tol: float, max_ite
         result = adam.minimize(grid, *continuation.released_state(grid),
                                tol=tol, steps=steps, **solver_options)
         used = result.iterations
-    ms = (time.perf_counter() - t0) * 1e3
+    solve_s = time.perf_counter() - t0
     return Solution(
         patch=patch, material=material, solver=solver,
         R_mm=_ro(grid.R * grid.dr_mm), r_mm=_ro(result.r * grid.dr_mm),
         z_mm=_ro(result.z * grid.dr_mm), n_inside=grid.n_inside, dr_mm=grid.dr_mm,
         energy=float(result.energy), residual=float(result.residual),
-        converged=bool(result.converged), iterations=int(used), solve_ms=ms,
+        converged=bool(result.converged), iterations=int(used), solve_s=solve_s,
         message=result.message, second_order=result.second_order, tol=tol,
     )

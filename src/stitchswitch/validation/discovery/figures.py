@@ -55,7 +55,7 @@ def residual_maps(disc, which: str, limits) -> bytes:
         ax = axes[k]
         for s, mk in _MARKERS.items():
             sel = disc.split == s
-            sc = _map(ax, disc.d_mm[sel], disc.fill[sel], res[sel, k], limits[k], mk,
+            sc = _map(ax, disc.diameter_mm[sel], disc.fill[sel], res[sel, k], limits[k], mk,
                       f"{s} ({int(sel.sum())})")
         t = tests[q]
         verdict = "systematic" if t["systematic"] else "noise-like"
@@ -110,7 +110,7 @@ def signatures(disc, top: int = 3) -> bytes:
     for i, (label, values) in enumerate(rows):
         for k, q in enumerate(QUANTITIES):
             ax = axes[i, k]
-            sc = _map(ax, disc.d_mm[tr], disc.fill[tr], values[:, k], limits[k])
+            sc = _map(ax, disc.diameter_mm[tr], disc.fill[tr], values[:, k], limits[k])
             ax.set_title(f"{label}: {q}" if k == 0 else q, fontsize=9)
             if i == len(rows) - 1:
                 ax.set_xlabel("d (mm)")

@@ -53,7 +53,7 @@ def report_dict(disc, data, start, start_label: str = "default") -> dict:
     rows = []
     for i, r in enumerate(data.rows):
         rows.append({"line": r.line, "sample_id": r.sample_id, "split": r.split,
-                     "d_mm": r.d_mm, "fill": r.fill,
+                     "d_mm": r.diameter_mm, "fill": r.fill,
                      "measured": {q: float(disc.measured[i, k]) for k, q in enumerate(QUANTITIES)},
                      "before": {q: float(disc.before[i, k]) for k, q in enumerate(QUANTITIES)},
                      "after": {q: float(disc.after[i, k]) for k, q in enumerate(QUANTITIES)}})

@@ -138,14 +138,14 @@ class Discovery:
 
     summary: dict
     ranking: tuple[Candidate, ...]
-    d_mm: np.ndarray
+    diameter_mm: np.ndarray
     fill: np.ndarray
     split: np.ndarray
     measured: np.ndarray
     before: np.ndarray
     after: np.ndarray
     signatures: dict = field(default_factory=dict)   # name -> {"per_unit" (n, 5), "pattern" (n_train, 5)}
-    seconds: float = 0.0
+    elapsed_s: float = 0.0
     solves: int = 0
 
     @property
@@ -190,7 +190,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         stage[0] += 1
 
     rows = data.rows
-    d_all = np.array([r.d_mm for r in rows])
+    d_all = np.array([r.diameter_mm for r in rows])
     p_all = np.array([r.fill for r in rows])
     split = np.array([r.split for r in rows])
     measured = data.keypoints()
@@ -297,8 +297,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         "n_train": int(tr.sum()), "n_val": int(va.sum()),
         "config": config.as_dict(),
     }
-    return Discovery(summary=summary, ranking=ranking, d_mm=d_all, fill=p_all, split=split, measured=measured,
-                     before=before, after=after, signatures=sigs,
-                     seconds=time.perf_counter() - t0, solves=ev.calls)
+    return Discovery(summary=summary, ranking=ranking, diameter_mm=d_all, fill=p_all, split=split,
+                     measured=measured, before=before, after=after, signatures=sigs,
+                     elapsed_s=time.perf_counter() - t0, solves=ev.calls)
 
 
