@@ -1,5 +1,7 @@
-"""The candidate effects: derivatives against finite differences, zero strength is the starting
-model bit for bit, continuity at zero, each effect changes the keypoints, and the registry."""
+"""The candidate effects: their terms are ``Term``s, grid changes keep the derivatives exact, zero
+strength is the starting model bit for bit, continuity at zero, each effect changes the
+keypoints, and the registry. The added terms' own derivatives are tested in
+tests/test_energy_terms.py."""
 import numpy as np
 import pytest
 
@@ -7,19 +9,18 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model import assembly
 from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.model.terms import ALL_TERMS, Term
 from stitchswitch.reduced.solvers.solve import solve
 from stitchswitch.validation.discovery.effects import (
+    CONTROLS,
     LIBRARY,
     Effect,
     EffectParameter,
     configure,
     get_effect,
-    gravity_sag,
-    hardening,
-    hoop_bending,
     register_effect,
+    resolve,
     solve_effects,
-    tension_asymmetry,
 )
 from stitchswitch.validation.discovery.effects.registry import LIBRARY as REGISTRY
 
@@ -34,36 +35,6 @@ PATCH = Patch(20.0, 0.8)
 def _kp(sol):
     k = sol.keypoints
     return np.array([k.h_mm, k.r_a_mm, k.z_a_mm, k.r_b_mm, k.z_b_mm])
-
-
-
-NEW_TERMS = {
-    "hardening": hardening.term(0.7, 1.0),
-    "hoop_bending": hoop_bending.term(2.5),
-    "tension_asymmetry_pos": tension_asymmetry.term(0.08, 0.8),
-    "tension_asymmetry_neg": tension_asymmetry.term(-0.15, 1.0),
-    "gravity_sag": gravity_sag.EFFECT.terms(PATCH, DEFAULT_MATERIAL, (0.3,))[0],
-}
-
-
-@pytest.mark.parametrize("name", sorted(NEW_TERMS))
-@pytest.mark.parametrize("seed", [0, 1])
-def test_new_term_derivatives_match_finite_differences(small_grid, name, seed):
-    term = (NEW_TERMS[name],)
-    r, z = random_state(small_grid, seed)
-    E, g, hb = assembly.derivatives(r, z, small_grid, term)
-    energy = lambda x: assembly.energy(x[0::2], x[1::2], small_grid, term)      # noqa: E731
-    gradient = lambda x: assembly.gradient(x[0::2], x[1::2], small_grid, term)  # noqa: E731
-    x = _pack(r, z)
-    assert E == pytest.approx(energy(x), rel=1e-12)
-    assert E != 0.0
-    g_fd = _fd_gradient(energy, x)
-    scale = np.max(np.abs(g))
-    assert scale > 0
-    np.testing.assert_allclose(g, g_fd, rtol=0, atol=1e-6 * scale)
-    H = assembly.band_to_dense(hb)
-    H_fd = fd_jacobian(gradient, x)
-    np.testing.assert_allclose(H, H_fd, rtol=0, atol=1e-6 * max(np.max(np.abs(H_fd)), 1e-12))
 
 
 @pytest.mark.parametrize("name", ["fill_exponent", "boundary_transition"])
@@ -82,44 +53,16 @@ def test_grid_effects_derivatives_through_wrapped_terms(small_grid, name):
                                atol=1e-6 * np.max(np.abs(H_fd)))
 
 
-def test_hoop_bending_is_the_shell_references_hoop_term():
-    """On a smooth cone-like profile, H = 1 matches B z'^2 / (l r) integrated (B = w_b s / 8)."""
-    grid = make_grid(Patch(60.0, 1.0), DEFAULT_MATERIAL)
-    R = grid.R
-    r = 1.3 * R
-    z = 5.0 * np.exp(-(R / 40.0) ** 2)
-    E = hoop_bending.term(1.0).energy(r, z, hoop_bending.term(1.0).coefficients(grid))
-    mid = 0.5 * (R[1:] + R[:-1])
-    zp = -5.0 * 2 * mid / 1600.0 * np.exp(-(mid / 40.0) ** 2)
-    l = np.hypot(1.3, zp)
-    w = hoop_bending.segment_weights(grid)
-    continuum = np.sum(w * zp ** 2 / (l * 1.3 * mid)) / grid.n_nodes
-    assert E == pytest.approx(continuum, rel=2e-3)
-
-
-def test_tension_asymmetry_completes_the_square():
-    """bending + tension_asymmetry = w rho^2/D (T - T0)^2 per inside hinge."""
-    from stitchswitch.reduced.model.terms import bending
-
-    grid = make_grid(Patch(20.0, 0.9), DEFAULT_MATERIAL.replace(n_nodes=40))
-    r, z = random_state(grid, 5)
-    term = tension_asymmetry.term(0.1, 0.9)
-    w, t0 = term.coefficients(grid)
-    total = bending.energy(r, z, bending.coefficients(grid)) + term.energy(r, z, (w, t0))
-    expected = 0.0
-    wb = bending.coefficients(grid)[0]
-    for i in range(grid.n_nodes - 2):
-        a = np.array([r[i + 1] - r[i], z[i + 1] - z[i]])
-        b = np.array([r[i + 2] - r[i + 1], z[i + 2] - z[i + 1]])
-        T = (a[0] * b[1] - a[1] * b[0]) / (np.linalg.norm(a) * np.linalg.norm(b) + a @ b)
-        D = 0.5 * (r[i] + r[i + 1]) * np.linalg.norm(a) + 0.5 * (r[i + 1] + r[i + 2]) * np.linalg.norm(b)
-        A = r[i + 1] ** 2 / D
-        expected += wb[i] * A * T ** 2 + w[i] * A * (t0[i] ** 2 - 2 * t0[i] * T)
-        if w[i] == wb[i]:   # strictly inside: a perfect square
-            assert wb[i] * A * (T - t0[i]) ** 2 == pytest.approx(
-                wb[i] * A * T ** 2 + w[i] * A * (t0[i] ** 2 - 2 * t0[i] * T), rel=1e-12)
-    assert total == pytest.approx(expected, rel=1e-12)
-    assert np.count_nonzero(w) == grid.n_inside      # inside hinges plus the boundary hinge
+@pytest.mark.parametrize("name", [n for n in (*LIBRARY, *CONTROLS) if resolve(n).terms is not None])
+def test_every_effect_term_is_a_term(name):
+    """Effects add ``Term`` objects (their kernels and finite-difference tests live in
+    ``reduced.model.terms``, tests/test_energy_terms.py); grid changes keep them ``Term``s."""
+    effect = resolve(name)
+    probe = tuple(p.probe for p in effect.parameters)
+    extra = effect.terms(PATCH, DEFAULT_MATERIAL, probe)
+    assert extra and all(isinstance(t, Term) for t in extra)
+    _, terms = configure(PATCH, DEFAULT_MATERIAL, {name: probe, "fill_exponent": (0.5,)})
+    assert len(terms) == len(ALL_TERMS) + len(extra) and all(isinstance(t, Term) for t in terms)
 
 
 @pytest.mark.parametrize("name", list(LIBRARY))

@@ -1,18 +1,36 @@
-"""Finite-difference checks of every term's gradient and Hessian, and the energy's invariances."""
+"""Finite-difference checks of every term's gradient and Hessian (the model's and the extra
+terms the discovery effects add), the energy's invariances, and the term protocol."""
+import dataclasses
+
 import numpy as np
 import pytest
 
+from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model import assembly
 from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
-from stitchswitch.reduced.model.terms import ALL_TERMS, hardening
+from stitchswitch.reduced.model.terms import ALL_TERMS, bending, gravity, hardening, hoop_bending, natural_curvature
 
 from helpers import fd_gradient as _fd_gradient
 from helpers import fd_jacobian, random_state
 from helpers import pack as _pack
 
-TERMS = {t.__name__.rsplit(".", 1)[1]: t for t in ALL_TERMS}
+TERMS = {t.name: t for t in ALL_TERMS}
 
+
+def _assembled_and_differenced(grid, terms, r, z):
+    """(E, gradient, dense Hessian) of ``terms`` at (r, z) from the assembly, and the same by
+    central finite differences (the energy itself, of the energy, of the gradient)."""
+    E, g, hb = assembly.derivatives(r, z, grid, terms)
+    x = _pack(r, z)
+
+    def energy(y):
+        return assembly.energy(y[0::2], y[1::2], grid, terms)
+
+    def gradient(y):
+        return assembly.gradient(y[0::2], y[1::2], grid, terms)
+
+    return (E, g, assembly.band_to_dense(hb)), (energy(x), _fd_gradient(energy, x), fd_jacobian(gradient, x))
 
 
 @pytest.mark.parametrize("name", sorted(TERMS))
@@ -22,23 +40,12 @@ def test_gradient_and_hessian_match_finite_differences(small_grid, name, seed):
     r, z = random_state(small_grid, seed)
     lengths = np.hypot(np.diff(r), np.diff(z))
     assert np.any(lengths < small_grid.lam) and np.any(lengths > small_grid.lam)   # slack and taut
-    E, g, hb = assembly.derivatives(r, z, small_grid, term)
-
-    def energy(x):
-        return assembly.energy(x[0::2], x[1::2], small_grid, term)
-
-    def gradient(x):
-        return assembly.gradient(x[0::2], x[1::2], small_grid, term)
-
-    x = _pack(r, z)
-    assert E == pytest.approx(energy(x), rel=1e-12, abs=1e-300)
+    (E, g, H), (E_x, g_fd, H_fd) = _assembled_and_differenced(small_grid, term, r, z)
+    assert E == pytest.approx(E_x, rel=1e-12, abs=1e-300)
     assert E > 0
-    g_fd = _fd_gradient(energy, x)
     scale = np.max(np.abs(g))
     assert scale > 0
     np.testing.assert_allclose(g, g_fd, rtol=0, atol=1e-6 * scale)
-    H = assembly.band_to_dense(hb)
-    H_fd = fd_jacobian(gradient, x)
     np.testing.assert_allclose(H, H_fd, rtol=0, atol=1e-6 * np.max(np.abs(H)))
 
 
@@ -108,3 +115,74 @@ def test_hardening_sign_and_continuation():
     above = hardening.h(np.array([es + 1e-9]), gamma)
     for lo, hi in zip(below, above):
         assert hi[0] == pytest.approx(lo[0], rel=1e-6)
+
+
+EXTRA_TERMS = {
+    "hardening": hardening.with_weight(0.7, 1.0),
+    "hoop_bending": hoop_bending.term(2.5),
+    "natural_curvature_pos": natural_curvature.term(0.08, 0.8),
+    "natural_curvature_neg": natural_curvature.term(-0.15, 1.0),
+    "gravity": gravity.term(0.3, 0.8, 2.0),
+}
+
+
+@pytest.mark.parametrize("name", sorted(EXTRA_TERMS))
+@pytest.mark.parametrize("seed", [0, 1])
+def test_extra_term_derivatives_match_finite_differences(small_grid, name, seed):
+    term = (EXTRA_TERMS[name],)
+    r, z = random_state(small_grid, seed)
+    (E, g, H), (E_x, g_fd, H_fd) = _assembled_and_differenced(small_grid, term, r, z)
+    assert E == pytest.approx(E_x, rel=1e-12)
+    assert E != 0.0
+    scale = np.max(np.abs(g))
+    assert scale > 0
+    np.testing.assert_allclose(g, g_fd, rtol=0, atol=1e-6 * scale)
+    np.testing.assert_allclose(H, H_fd, rtol=0, atol=1e-6 * max(np.max(np.abs(H_fd)), 1e-12))
+
+
+def test_hoop_bending_is_the_shell_references_hoop_term():
+    """On a smooth cone-like profile, H = 1 matches B z'^2 / (l r) integrated (B = w_b s / 8)."""
+    grid = make_grid(Patch(60.0, 1.0), DEFAULT_MATERIAL)
+    R = grid.R
+    r = 1.3 * R
+    z = 5.0 * np.exp(-(R / 40.0) ** 2)
+    E = hoop_bending.term(1.0).energy(r, z, hoop_bending.term(1.0).coefficients(grid))
+    mid = 0.5 * (R[1:] + R[:-1])
+    zp = -5.0 * 2 * mid / 1600.0 * np.exp(-(mid / 40.0) ** 2)
+    l = np.hypot(1.3, zp)
+    w = hoop_bending.segment_weights(grid)
+    continuum = np.sum(w * zp ** 2 / (l * 1.3 * mid)) / grid.n_nodes
+    assert E == pytest.approx(continuum, rel=2e-3)
+
+
+def test_natural_curvature_completes_the_square():
+    """bending + natural_curvature = w rho^2/D (T - T0)^2 per inside hinge."""
+    grid = make_grid(Patch(20.0, 0.9), DEFAULT_MATERIAL.replace(n_nodes=40))
+    r, z = random_state(grid, 5)
+    term = natural_curvature.term(0.1, 0.9)
+    w, t0 = term.coefficients(grid)
+    total = bending.energy(r, z, bending.coefficients(grid)) + term.energy(r, z, (w, t0))
+    expected = 0.0
+    wb = bending.coefficients(grid)[0]
+    for i in range(grid.n_nodes - 2):
+        a = np.array([r[i + 1] - r[i], z[i + 1] - z[i]])
+        b = np.array([r[i + 2] - r[i + 1], z[i + 2] - z[i + 1]])
+        T = (a[0] * b[1] - a[1] * b[0]) / (np.linalg.norm(a) * np.linalg.norm(b) + a @ b)
+        D = 0.5 * (r[i] + r[i + 1]) * np.linalg.norm(a) + 0.5 * (r[i + 1] + r[i + 2]) * np.linalg.norm(b)
+        A = r[i + 1] ** 2 / D
+        expected += wb[i] * A * T ** 2 + w[i] * A * (t0[i] ** 2 - 2 * t0[i] * T)
+        if w[i] == wb[i]:   # strictly inside: a perfect square
+            assert wb[i] * A * (T - t0[i]) ** 2 == pytest.approx(
+                wb[i] * A * T ** 2 + w[i] * A * (t0[i] ** 2 - 2 * t0[i] * T), rel=1e-12)
+    assert total == pytest.approx(expected, rel=1e-12)
+    assert np.count_nonzero(w) == grid.n_inside      # inside hinges plus the boundary hinge
+
+
+def test_terms_are_checked_when_made_and_assembled(small_grid):
+    """A term's stencil fits the Hessian's band; the assembly takes ``Term`` objects only."""
+    with pytest.raises(InvalidInputError, match="stencil 4"):
+        dataclasses.replace(bending.TERM, stencil=4)
+    with pytest.raises(InvalidInputError, match="offset -1"):
+        dataclasses.replace(bending.TERM, offset=-1)
+    with pytest.raises(InvalidInputError, match="is not a Term"):
+        assembly.Model(small_grid, (bending,))

@@ -11,8 +11,8 @@ everything in mm (the reduced energy in dR units is this integral divided by N d
 
 with l = |(r', z')| the meridional stretch, kappa_s = (r' z'' - z' r'') / l^3 the meridional
 curvature, kappa_t = -z' / (l r) the hoop (parallel) curvature sin(phi) / r, and
-B = w_b (0.5 mm)^2 / 8: the limit of the discrete hinge energy, w_b r kappa^2 l / 8 per node,
-with the bending weights defined at 0.5 mm (``discretization.BENDING_REFERENCE_MM``).
+B = w_b dR_ref^2 / 8: the limit of the discrete hinge energy, w_b r kappa^2 l / 8 per node,
+with the bending weights defined at dR_ref = ``discretization.BENDING_REFERENCE_MM`` (0.5 mm).
 H = 1 switches on hoop bending and nu the Poisson coupling: the physics the reduced model drops.
 With H = 0 the density is exactly the reduced model's continuum limit.
 
@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from stitchswitch.reduced.model.discretization import BENDING_REFERENCE_MM
 from stitchswitch.reduced.model.terms.hardening import h as hardening_h
 
 NQ = 5   # r, r', z', r'', z''
@@ -103,7 +104,7 @@ def density(q, S, coef, hessian: bool = True):
     n2 = 2 * coef["k_theta"] / ring + coef["w_log"] * h2
 
     # bending: B * monomials in (r, X, l, z')
-    B = coef["w_b"] * 0.25 / 8.0
+    B = coef["w_b"] * BENDING_REFERENCE_MM ** 2 / 8.0
     X = rp * zpp - zp * rpp
     bv, bg, bh = _monomial_derivatives(_bending_monomials(coef["hoop"], coef["nu"]), (r, X, l, zp))
 

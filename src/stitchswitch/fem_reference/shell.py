@@ -35,7 +35,7 @@ from scipy.linalg import LinAlgError, cho_solve_banded, cholesky_banded, eig_ban
 from scipy.sparse.linalg import splu
 
 from stitchswitch.fem_reference.density import density
-from stitchswitch.reduced.model.discretization import make_grid
+from stitchswitch.reduced.model.discretization import fill_mixture, make_grid
 from stitchswitch.reduced.model.params import Material, Patch
 
 R_IDX, Z_IDX = (0, 1, 3), (2, 4)     # q = (r, r', z', r'', z''): r's (value, d, d2), z's (d, d2)
@@ -91,17 +91,9 @@ class ShellModel:
         b = self.basis
         self.nodes = nodes
         self.S = np.asarray(b.global_coordinates())[0]
-        inside = self.S < self.rb
-        p2 = patch.fill ** 2
-
-        def piece(emb, fab):
-            return np.where(inside, emb * p2 + fab * (1 - p2), fab)
-
+        mix = fill_mixture(self.S < self.rb, patch.fill, material)
         self.coef = dict(
-            lam=np.where(inside, 1.0 + (material.eta - 1.0) * p2, 1.0),
-            k_r=piece(material.k_r_emb, material.k_r_fab),
-            k_theta=piece(material.k_theta_emb, material.k_theta_fab),
-            w_b=piece(material.w_b_emb, material.w_b_fab),
+            lam=mix.lam, k_r=mix.k_r, k_theta=mix.k_theta, w_b=mix.w_b,
             w_log=material.w_log, gamma=material.gamma_mm, c=material.compression_ratio,
             hoop=1.0 if hoop_bending else 0.0, nu=float(poisson))
         self.rest_lam = self.coef["lam"]           # the design's rest metric (t = 1)

@@ -2,8 +2,8 @@
 
 * ``params``: ``Patch`` (diameter_mm, fill) and ``Material`` (frozen, validated), ``DEFAULT_MATERIAL``.
 * ``discretization``: ``make_grid(patch, material) -> Grid``, the rest-radius grid and the
-  per-node coefficients (the fill-mixture law lives here, once).
-* ``terms/``: one energy term per module, each with its gradient and banded Hessian.
+  per-node coefficients (the fill-mixture law lives here, once: ``fill_mixture``).
+* ``terms/``: one energy term per module, each a ``Term`` with its gradient and banded Hessian.
 * ``assembly``: ``Model``, ``energy``, ``derivatives``: the terms summed.
 * ``keypoints``: ``Keypoints`` and ``keypoints_from_profile``: h, (r_a, z_a), (r_b, z_b).
 * ``material_io``: the material JSON file (``load_material``, ``save_material``, ``material_hash``).

@@ -3,14 +3,18 @@
 Global dofs are interleaved node by node: dof 2i is r_i and dof 2i+1 is z_i. Every term
 couples at most three neighbouring nodes, so the Hessian has half-bandwidth 5 in this
 ordering; it is returned in LAPACK lower band storage ``hb[k, j] = H[j + k, j]`` (6, 2N).
-Each term's compiled kernel adds its own contribution in place (``terms/segment.py``).
+Every term is a ``terms.protocol.Term``; each term's compiled kernel adds its own contribution
+in place (``terms/segment.py``), so the assembly loop is one call per term.
 """
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 import numpy as np
 
+from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.discretization import Grid
-from stitchswitch.reduced.model.terms import ALL_TERMS
+from stitchswitch.reduced.model.terms import ALL_TERMS, Term
 from stitchswitch.reduced.model.terms.segment import BANDWIDTH, NO_HESSIAN
 
 
@@ -22,9 +26,12 @@ def in_domain(r: np.ndarray, z: np.ndarray) -> bool:
 class Model:
     """The total energy of one design (a grid) as a sum of terms, coefficients precomputed."""
 
-    def __init__(self, grid: Grid, terms=ALL_TERMS):
+    def __init__(self, grid: Grid, terms: Iterable[Term] = ALL_TERMS):
         self.grid = grid
         self.terms = tuple(terms)
+        for term in self.terms:
+            if not isinstance(term, Term):
+                raise InvalidInputError(f"terms: {term!r} is not a Term (reduced.model.terms.protocol)")
         self._coefs = [term.coefficients(grid) for term in self.terms]
 
     def energy(self, r: np.ndarray, z: np.ndarray) -> float:
@@ -50,17 +57,17 @@ class Model:
         return self.derivatives(r, z, hessian=False)[1]
 
 
-def energy(r: np.ndarray, z: np.ndarray, grid: Grid, terms=ALL_TERMS) -> float:
+def energy(r: np.ndarray, z: np.ndarray, grid: Grid, terms: Iterable[Term] = ALL_TERMS) -> float:
     """Total energy (Eq. 6 plus the slack regularization); +inf outside the domain."""
     return Model(grid, terms).energy(r, z)
 
 
-def derivatives(r: np.ndarray, z: np.ndarray, grid: Grid, terms=ALL_TERMS, hessian: bool = True):
+def derivatives(r: np.ndarray, z: np.ndarray, grid: Grid, terms: Iterable[Term] = ALL_TERMS, hessian: bool = True):
     """Energy, gradient and banded Hessian; see ``Model.derivatives``."""
     return Model(grid, terms).derivatives(r, z, hessian)
 
 
-def gradient(r: np.ndarray, z: np.ndarray, grid: Grid, terms=ALL_TERMS) -> np.ndarray:
+def gradient(r: np.ndarray, z: np.ndarray, grid: Grid, terms: Iterable[Term] = ALL_TERMS) -> np.ndarray:
     """Gradient (2N,) in interleaved dofs (no Hessian work)."""
     return Model(grid, terms).gradient(r, z)
 
@@ -76,6 +83,6 @@ def band_to_dense(hb: np.ndarray) -> np.ndarray:
     return H
 
 
-def hessian_dense(r: np.ndarray, z: np.ndarray, grid: Grid, terms=ALL_TERMS) -> np.ndarray:
+def hessian_dense(r: np.ndarray, z: np.ndarray, grid: Grid, terms: Iterable[Term] = ALL_TERMS) -> np.ndarray:
     """Dense (2N, 2N) Hessian; for tests and small problems only."""
     return band_to_dense(derivatives(r, z, grid, terms)[2])

@@ -14,7 +14,8 @@ Everything here is in units of dR: R_i = i.
 Segment i joins nodes i and i+1 (i = 0..N-2). Segment i is *inside* the embroidery iff
 i < N_in, i.e. iff both of its nodes lie in the closed disc R <= d / 2 eta. (Read literally,
 the paper's test R^(i) <= d / 2 eta would also put segment N_in, the first one outside, inside.)
-The per-segment rest metric lambda and stiffnesses k follow the paper, weighted by p^2:
+The per-segment rest metric lambda and stiffnesses k follow the paper, weighted by p^2
+(``fill_mixture``, also used by the shell reference):
 
     lambda = 1 + (eta - 1) p^2,   k = k_emb p^2 + k_fab (1 - p^2)   inside,
     lambda = 1,                   k = k_fab                         outside.
@@ -108,6 +109,31 @@ def n_inside_array(diameters_mm: np.ndarray, material: Material) -> np.ndarray:
     return np.maximum(np.ceil(ratio - 1e-12), min_inside(material)).astype(int)
 
 
+@dataclass(frozen=True)
+class FillMixture:
+    """Rest metric and stiffnesses of the embroidered fabric at a set of points."""
+
+    lam: np.ndarray
+    k_r: np.ndarray
+    k_theta: np.ndarray
+    w_b: np.ndarray
+
+
+def fill_mixture(inside: np.ndarray, fill: float, material: Material) -> FillMixture:
+    """The paper's fill-mixture law, weighted by p^2: lambda = 1 + (eta - 1) p^2 and
+    k = k_emb p^2 + k_fab (1 - p^2) where ``inside``, lambda = 1 and k = k_fab elsewhere, for
+    k = k_r, k_theta, w_b. Shared by the grid and the shell reference (``fem_reference.shell``)."""
+    p2 = fill ** 2
+
+    def piecewise(emb: float, fab: float) -> np.ndarray:
+        return np.where(inside, emb * p2 + fab * (1.0 - p2), fab)
+
+    return FillMixture(lam=np.where(inside, 1.0 + (material.eta - 1.0) * p2, 1.0),
+                       k_r=piecewise(material.k_r_emb, material.k_r_fab),
+                       k_theta=piecewise(material.k_theta_emb, material.k_theta_fab),
+                       w_b=piecewise(material.w_b_emb, material.w_b_fab))
+
+
 def make_grid(patch: Patch, material: Material) -> Grid:
     """Discretize one design with the paper's adaptive spacing."""
     n = material.n_nodes
@@ -117,21 +143,15 @@ def make_grid(patch: Patch, material: Material) -> Grid:
             f"diameter_mm: {patch.diameter_mm:g} needs {n_in} nodes inside the patch, "
             f"but n_nodes is {n}; increase n_nodes or dr_max_mm")
     dr_mm = patch.diameter_mm / (2.0 * material.eta) / n_in
-    p2 = patch.fill ** 2
-    inside = np.arange(n - 1) < n_in
-
-    def piecewise(emb: float, fab: float) -> np.ndarray:
-        return np.where(inside, emb * p2 + fab * (1.0 - p2), fab)
-
-    lam = np.where(inside, 1.0 + (material.eta - 1.0) * p2, 1.0)
+    mix = fill_mixture(np.arange(n - 1) < n_in, patch.fill, material)
     return Grid(
         n_nodes=n,
         n_inside=n_in,
         dr_mm=dr_mm,
-        lam=_ro(lam),
-        k_r=_ro(piecewise(material.k_r_emb, material.k_r_fab)),
-        k_theta=_ro(piecewise(material.k_theta_emb, material.k_theta_fab)),
-        w_b=_ro(piecewise(material.w_b_emb, material.w_b_fab)[:-1]),
+        lam=_ro(mix.lam),
+        k_r=_ro(mix.k_r),
+        k_theta=_ro(mix.k_theta),
+        w_b=_ro(mix.w_b[:-1]),
         w_log=material.w_log,
         gamma=material.gamma_mm / dr_mm,
         compression=material.compression_ratio,

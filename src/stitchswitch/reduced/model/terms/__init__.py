@@ -1,20 +1,26 @@
-"""Energy terms of the reduced model, one per module.
+"""Energy terms of the reduced model, one per module, each a ``protocol.Term``.
 
-Every term works on the node coordinates (r_i, z_i) in units of dR and exposes
+A term works on the node coordinates (r_i, z_i) in units of dR and carries its stencil and
+offset, ``coefficients(grid)`` (computed once per design), ``energy(r, z, coef)`` and
+``accumulate(r, z, coef, grad, hb)`` (gradient and banded Hessian in place); see ``protocol``.
 
-* ``STENCIL`` (nodes per element) and ``OFFSET`` (first node of the first element),
-* ``coefficients(grid)``: its per-element coefficients for one design, computed once,
-* ``energy(r, z, coef) -> float`` (+inf outside the term's domain),
-* ``accumulate(r, z, coef, grad, hb) -> float``: adds its gradient into ``grad`` (2N,) and,
-  if ``hb`` has columns, its Hessian into the lower band ``hb`` (6, 2N); returns its energy.
+* The model (Eq. 6 plus the slack regularization): ``radial``, ``compression``,
+  ``circumferential``, ``hardening``, ``bending``, each exposing ``TERM``; ``ALL_TERMS``.
+* Physics the model leaves out, used by the discovery effects (``validation.discovery.effects``):
+  ``hoop_bending``, ``natural_curvature``, ``gravity`` (factories ``term(...)``) and
+  ``hardening.with_weight``.
+* ``variants``: discretization variants of single terms.
+* Shared kernels: ``segment`` (scattering into the global arrays), ``hinge`` (the chain rule of
+  the hinge energies).
 
 The loops are compiled with numba: for N = 300 a Python/numpy version spends its time in
 per-call overhead (0.6 ms per Hessian against 0.06 ms compiled), and the calibration and the
 design-space map need thousands of solves. Assembly is in ``..assembly``.
 """
 from stitchswitch.reduced.model.terms import bending, circumferential, compression, hardening, radial
+from stitchswitch.reduced.model.terms.protocol import Term
 
 #: The terms of Eq. 6 plus the slack regularization, in assembly order.
-ALL_TERMS = (radial, compression, circumferential, hardening, bending)
+ALL_TERMS = (radial.TERM, compression.TERM, circumferential.TERM, hardening.TERM, bending.TERM)
 
-__all__ = ["ALL_TERMS", "radial", "compression", "circumferential", "hardening", "bending"]
+__all__ = ["ALL_TERMS", "Term", "radial", "compression", "circumferential", "hardening", "bending"]

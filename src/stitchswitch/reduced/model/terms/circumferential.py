@@ -13,10 +13,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.model.terms.segment import NO_HESSIAN
-
-STENCIL = 1
-OFFSET = 1
+from stitchswitch.reduced.model.terms.protocol import Term
 
 
 def strain(r, grid) -> np.ndarray:
@@ -31,7 +28,8 @@ def coefficients(grid):
 
 
 @njit(cache=True)
-def _kernel(r, rest, w, grad, hb, want_g, want_h):
+def _kernel(r, z, rest, w, grad, hb, want_g, want_h):
+    """``Term.from_kernel``'s signature; z does not enter."""
     E = 0.0
     for i in range(rest.size):
         eps = r[i + 1] - rest[i]
@@ -43,10 +41,4 @@ def _kernel(r, rest, w, grad, hb, want_g, want_h):
     return E
 
 
-def energy(r, z, coef) -> float:
-    return _kernel(r, *coef, np.empty(0), NO_HESSIAN, False, False)
-
-
-def accumulate(r, z, coef, grad, hb) -> float:
-    """Add the gradient (and the Hessian if ``hb`` has columns) into grad / hb; return E."""
-    return _kernel(r, *coef, grad, hb, True, hb.shape[1] > 0)
+TERM = Term.from_kernel("circumferential", stencil=1, offset=1, coefficients=coefficients, kernel=_kernel)

@@ -10,20 +10,20 @@ segment, with t = l / lambda and c = ``Material.compression_ratio``:
 
 psi(1) = psi'(1) = 0 and psi''(1) = 2, so near the rest length E_c is the radial term with
 stiffness c k_r acting on compression; psi -> infinity as t -> 0, so no segment collapses
-and the problem has a true minimizer. c -> 0 recovers the printed model (tested: the
-keypoints converge as c decreases). The energy is +inf for a segment of zero length.
+and the problem has a true minimizer. c is a physical parameter, not a vanishing numerical
+device: where the equilibrium is taut everywhere the term is inactive and the keypoints do
+not depend on c, but where segments go slack h depends strongly on c (as c decreases the
+slack segments shorten and the dome flattens; tests/test_solver.py, docs/model.md). The
+energy is +inf for a segment of zero length.
 """
 from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.model.terms.segment import NO_HESSIAN, add_segment, segment
-
-STENCIL = 2
-OFFSET = 0
+from stitchswitch.reduced.model.terms.protocol import Term
+from stitchswitch.reduced.model.terms.segment import add_segment, segment
 
 
 def coefficients(grid):
@@ -49,10 +49,4 @@ def _kernel(r, z, lam, w, grad, hb, want_g, want_h):
     return E
 
 
-def energy(r, z, coef) -> float:
-    return _kernel(r, z, *coef, np.empty(0), NO_HESSIAN, False, False)
-
-
-def accumulate(r, z, coef, grad, hb) -> float:
-    """Add the gradient (and the Hessian if ``hb`` has columns) into grad / hb; return E."""
-    return _kernel(r, z, *coef, grad, hb, True, hb.shape[1] > 0)
+TERM = Term.from_kernel("compression", stencil=2, offset=0, coefficients=coefficients, kernel=_kernel)

@@ -16,15 +16,13 @@ and convex: the stiffness stays at h''(e*) = 1 / (CUTOFF g) for every larger str
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.model.terms.segment import NO_HESSIAN
-
-STENCIL = 1
-OFFSET = 1
+from stitchswitch.reduced.model.terms.protocol import Term
 
 #: Fraction of gamma below the limit where the quadratic continuation takes over.
 CUTOFF = 0.01
@@ -49,7 +47,8 @@ def h(e, gamma: float):
 
 
 @njit(cache=True)
-def _kernel(r, rest, gamma, a, grad, hb, want_g, want_h):
+def _kernel(r, z, rest, gamma, a, grad, hb, want_g, want_h):
+    """``Term.from_kernel``'s signature; z does not enter."""
     E = 0.0
     if a == 0.0:
         return E
@@ -68,10 +67,13 @@ def coefficients(grid):
     return grid.lam * grid.R[1:], grid.gamma, grid.w_log / grid.n_nodes
 
 
-def energy(r, z, coef) -> float:
-    return _kernel(r, *coef, np.empty(0), NO_HESSIAN, False, False)
+TERM = Term.from_kernel("hardening", stencil=1, offset=1, coefficients=coefficients, kernel=_kernel)
 
 
-def accumulate(r, z, coef, grad, hb) -> float:
-    """Add the gradient (and the Hessian if ``hb`` has columns) into grad / hb; return E."""
-    return _kernel(r, *coef, grad, hb, True, hb.shape[1] > 0)
+def with_weight(w_log: float, gamma_mm: float) -> Term:
+    """This term with its own weight ``w_log`` and limit ``gamma_mm`` (mm) instead of the
+    grid's: an extra hardening on top of the model's own."""
+    def coefficients(grid):
+        return grid.lam * grid.R[1:], gamma_mm / grid.dr_mm, w_log / grid.n_nodes
+
+    return dataclasses.replace(TERM, name="hardening_extra", coefficients=coefficients)

@@ -8,13 +8,10 @@ is what keeps it from collapsing.
 """
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.model.terms.segment import NO_HESSIAN, add_segment, segment
-
-STENCIL = 2
-OFFSET = 0
+from stitchswitch.reduced.model.terms.protocol import Term
+from stitchswitch.reduced.model.terms.segment import add_segment, segment
 
 
 def coefficients(grid):
@@ -36,10 +33,4 @@ def _kernel(r, z, lam, w, grad, hb, want_g, want_h):
     return E
 
 
-def energy(r, z, coef) -> float:
-    return _kernel(r, z, *coef, np.empty(0), NO_HESSIAN, False, False)
-
-
-def accumulate(r, z, coef, grad, hb) -> float:
-    """Add the gradient (and the Hessian if ``hb`` has columns) into grad / hb; return E."""
-    return _kernel(r, z, *coef, grad, hb, True, hb.shape[1] > 0)
+TERM = Term.from_kernel("radial", stencil=2, offset=0, coefficients=coefficients, kernel=_kernel)

@@ -1,7 +1,7 @@
 """Kernels shared by the terms: scattering local gradients and Hessians into the global
-arrays. Global dofs are interleaved node by node (dof 2i = r_i, dof 2i+1 = z_i); the Hessian
-is kept in LAPACK lower band storage ``hb[k, j] = H[j + k, j]`` with k = 0..5 (every term
-couples at most three consecutive nodes)."""
+arrays, and the Hessian of a segment's length. Global dofs are interleaved node by node
+(dof 2i = r_i, dof 2i+1 = z_i); the Hessian is kept in LAPACK lower band storage
+``hb[k, j] = H[j + k, j]`` with k = 0..5 (every term couples at most three consecutive nodes)."""
 from __future__ import annotations
 
 import math
@@ -32,6 +32,23 @@ def add_local(grad, hb, first, g, H, m, want_h):
 
 
 @njit(cache=True)
+def add_length_hessian(H, off, k, ur, uz, l):
+    """H += k Hess l = k [[P, -P], [-P, P]] (lower triangle) at local dofs off..off+3, for a
+    segment of length l and unit vector u, P = (I - u u^T) / l."""
+    prr, prz, pzz = k * (1.0 - ur * ur) / l, -k * ur * uz / l, k * (1.0 - uz * uz) / l
+    H[off, off] += prr
+    H[off + 1, off] += prz
+    H[off + 1, off + 1] += pzz
+    H[off + 2, off] -= prr
+    H[off + 2, off + 1] -= prz
+    H[off + 3, off] -= prz
+    H[off + 3, off + 1] -= pzz
+    H[off + 2, off + 2] += prr
+    H[off + 3, off + 2] += prz
+    H[off + 3, off + 3] += pzz
+
+
+@njit(cache=True)
 def add_segment(grad, hb, i, dEdl, d2Edl2, vr, vz, l, want_h):
     """Scatter f(l) of segment i (nodes i, i+1): gradient dEdl (-u, u) and Hessian
     [[K, -K], [-K, K]] with K = f'' u u^T + (f' / l) (I - u u^T)."""
@@ -59,6 +76,7 @@ def add_segment(grad, hb, i, dEdl, d2Edl2, vr, vz, l, want_h):
         hb[0, a + 3] += kzz
 
 
-#: Placeholder band for evaluations without a Hessian (same array type as a real band, so the
-#: kernels are compiled once).
+#: Placeholders for evaluations without a gradient or a Hessian (same array types as the real
+#: ones, so the kernels are compiled once); the kernels never write into them.
+NO_GRADIENT = np.zeros(0)
 NO_HESSIAN = np.zeros((BANDWIDTH + 1, 0))

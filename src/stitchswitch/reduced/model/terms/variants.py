@@ -7,7 +7,7 @@ with the rest metric and stiffness averaged over its two segments, instead of th
 """
 from __future__ import annotations
 
-from types import SimpleNamespace
+import dataclasses
 
 import numpy as np
 
@@ -30,14 +30,11 @@ def _hardening_coefficients(grid):
     return _node_average(grid.lam) * grid.R[1:], grid.gamma, grid.w_log / grid.n_nodes
 
 
-def _variant(module, coefficients):
-    return SimpleNamespace(__name__=module.__name__ + "_node_average", STENCIL=module.STENCIL,
-                           OFFSET=module.OFFSET, coefficients=coefficients,
-                           energy=module.energy, accumulate=module.accumulate)
-
-
-hoop_node_average = _variant(circumferential, _hoop_coefficients)
-hardening_node_average = _variant(hardening, _hardening_coefficients)
+hoop_node_average = dataclasses.replace(circumferential.TERM, name="circumferential_node_average",
+                                        coefficients=_hoop_coefficients)
+hardening_node_average = dataclasses.replace(hardening.TERM, name="hardening_node_average",
+                                             coefficients=_hardening_coefficients)
 
 #: The full term set with the node-averaged hoop quadrature.
-HOOP_NODE_AVERAGE_TERMS = (radial, compression, hoop_node_average, hardening_node_average, bending)
+HOOP_NODE_AVERAGE_TERMS = (radial.TERM, compression.TERM, hoop_node_average, hardening_node_average,
+                           bending.TERM)

@@ -6,29 +6,26 @@
    the solve gets the unchanged material and ``terms=None``);
 2. material changes are applied in the order of ``active``;
 3. grid changes (rest metric, stiffnesses) are composed into one function, applied to the grid
-   of every term through a thin wrapper (the idiom of ``reduced.model.terms.variants``): the solver,
-   the continuation and the keypoints are untouched;
+   of every term through a thin wrapper (a ``Term`` with other coefficients, the idiom of
+   ``reduced.model.terms.variants``): the solver, the continuation and the keypoints are untouched;
 4. extra terms are appended to ``terms.ALL_TERMS``.
 
 ``solve_effects(patch, material, active)`` is ``solve`` on the result.
 """
 from __future__ import annotations
 
-from types import SimpleNamespace
+import dataclasses
 
 from stitchswitch.reduced.model.params import Material, Patch
-from stitchswitch.reduced.model.terms import ALL_TERMS
+from stitchswitch.reduced.model.terms import ALL_TERMS, Term
 from stitchswitch.validation.discovery.effects.registry import resolve
 
 __all__ = ["configure", "solve_effects", "with_grid"]
 
 
-def with_grid(term, transform):
+def with_grid(term: Term, transform) -> Term:
     """``term`` with ``transform(grid)`` applied before its coefficients are computed."""
-    return SimpleNamespace(__name__=getattr(term, "__name__", "term"), STENCIL=term.STENCIL,
-                           OFFSET=term.OFFSET,
-                           coefficients=lambda grid: term.coefficients(transform(grid)),
-                           energy=term.energy, accumulate=term.accumulate)
+    return dataclasses.replace(term, coefficients=lambda grid: term.coefficients(transform(grid)))
 
 
 def configure(patch: Patch, material: Material, active) -> tuple[Material, tuple | None]:

@@ -7,10 +7,10 @@ optional:
 * ``material(material, values) -> Material``: a material field (``prestretch_loss``: eta);
 * ``grid(grid, patch, material, values) -> Grid``: the per-segment rest metric and stiffnesses
   (``fill_exponent``, ``boundary_transition``);
-* ``terms(patch, material, values) -> tuple``: extra energy terms, each with the interface of
-  ``reduced/terms`` (``STENCIL``, ``OFFSET``, ``coefficients(grid)``, ``energy``,
-  ``accumulate``) and its own finite-difference test (``hardening``, ``hoop_bending``,
-  ``tension_asymmetry``).
+* ``terms(patch, material, values) -> tuple``: extra energy terms, each a
+  ``reduced.model.terms.Term`` whose kernel lives in ``reduced/model/terms/`` with its own
+  finite-difference test (``hardening``, ``hoop_bending``, ``tension_asymmetry``); the effect
+  maps its parameters to the term.
 
 ``stitchswitch.validation.discovery.effects.model.configure`` composes the active effects into a material
 and a term tuple for ``reduced.solvers.solve.solve``. An effect whose parameters are all zero is left out
