@@ -6,21 +6,15 @@ OBJ has no place for them and carries the geometry only.
 """
 from __future__ import annotations
 
-import os
-
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.extensions import check_extension
 from stitchswitch.files.revolution import write_mesh
 
 MESH_EXTENSIONS = (".vtu", ".ply", ".obj")
 
 
 def check_mesh_path(path) -> str:
-    path = os.fspath(path)
-    ext = os.path.splitext(path)[1].lower()
-    if ext not in MESH_EXTENSIONS:
-        raise InvalidInputError(f"mesh file {path!r}: unknown extension {ext or '(none)'!r}; "
-                                "use " + ", ".join(MESH_EXTENSIONS))
-    return ext
+    return check_extension(path, MESH_EXTENSIONS, "mesh file")
 
 
 def write_scene_mesh(path, scene) -> int:

@@ -11,10 +11,10 @@ PNG or SVG by extension, written atomically and deterministically.
 from __future__ import annotations
 
 import io
-import os
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.files.atomic import atomic_write_bytes
+from stitchswitch.files.extensions import check_extension
 from stitchswitch.preview3d.profiles import PatchProfile
 
 FIGURE_FORMATS = (".png", ".svg")
@@ -22,12 +22,7 @@ EXTENT = 2.2          # the figure shows rest radii up to EXTENT * R_b
 
 
 def check_figure_path(path) -> str:
-    path = os.fspath(path)
-    ext = os.path.splitext(path)[1].lower()
-    if ext not in FIGURE_FORMATS:
-        raise InvalidInputError(f"output {path!r}: unknown extension {ext or '(none)'!r}; "
-                                "use " + ", ".join(FIGURE_FORMATS))
-    return ext
+    return check_extension(path, FIGURE_FORMATS)
 
 
 def _dimension(ax, p, q, text, offset=(0, 0), ha="center", va="center", at=0.5):

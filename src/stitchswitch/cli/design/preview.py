@@ -1,7 +1,6 @@
 """``stitchswitch preview``: a 3D preview of a design (PNG, offscreen), or one patch's profile."""
 from __future__ import annotations
 
-import os
 import time
 
 import click
@@ -9,15 +8,9 @@ import click
 from stitchswitch.cli import options
 from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.extensions import check_extension
 from stitchswitch.preview3d.camera import VIEWS
 from stitchswitch.preview3d.colours import COLOURS
-
-
-def _check_png(path: str) -> None:
-    ext = os.path.splitext(path)[1].lower()
-    if ext != ".png":
-        raise InvalidInputError(f"output {path!r}: unknown extension {ext or '(none)'!r}; "
-                                "the 3D preview is written as .png")
 
 
 def _write(fn, path):
@@ -76,7 +69,7 @@ def _design(path, output, state, view, size, colour, mesh_path, material_path):
     if material_path is not None:
         raise InvalidInputError("--material is for the single-patch view; a design file names "
                                 "its own material")
-    _check_png(output)
+    check_extension(output, (".png",), hint="the 3D preview is written as .png")
     opts = render.RenderOptions(view=view, size=render.parse_size(size or "1200x900"),
                                 colour=colour)
     t0 = time.perf_counter()

@@ -30,8 +30,6 @@ from stitchswitch.layout.embroidery.ordering import visiting_order
 from stitchswitch.layout.embroidery.patch_geometry import PatchGeometry
 
 STITCH, JUMP, TRIM, COLOR_CHANGE, END = 0, 1, 2, 3, 4
-COMMAND_NAMES = {STITCH: "stitch", JUMP: "jump", TRIM: "trim", COLOR_CHANGE: "color change",
-                 END: "end"}
 
 
 def _default_speed() -> float:

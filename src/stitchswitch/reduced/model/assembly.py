@@ -81,8 +81,3 @@ def band_to_dense(hb: np.ndarray) -> np.ndarray:
         H[idx + k, idx] = hb[k, : n - k]
         H[idx, idx + k] = hb[k, : n - k]
     return H
-
-
-def hessian_dense(r: np.ndarray, z: np.ndarray, grid: Grid, terms: Iterable[Term] = ALL_TERMS) -> np.ndarray:
-    """Dense (2N, 2N) Hessian; for tests and small problems only."""
-    return band_to_dense(derivatives(r, z, grid, terms)[2])

@@ -11,8 +11,6 @@ from ezdxf import disassemble
 
 from stitchswitch.errors import InvalidInputError
 
-CURVES = ("LWPOLYLINE", "POLYLINE", "LINE", "ARC", "CIRCLE", "ELLIPSE", "SPLINE")
-
 
 def flatten(entity, tolerance: float) -> np.ndarray | None:
     """The entity as a (k, 2) vertex array, vertices on the curve, chords within `tolerance`."""
