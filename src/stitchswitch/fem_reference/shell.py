@@ -34,6 +34,7 @@ from scipy.interpolate import CubicSpline
 from scipy.linalg import LinAlgError, cho_solve_banded, cholesky_banded, eig_banded, solveh_banded
 from scipy.sparse.linalg import splu
 
+from stitchswitch.errors import InvalidInputError, StitchSwitchError
 from stitchswitch.fem_reference.density import density
 from stitchswitch.reduced.model.discretization import fill_mixture, make_grid
 from stitchswitch.reduced.model.params import Material, Patch
@@ -219,7 +220,7 @@ class ShellModel:
         lower = Hf.row >= Hf.col
         rows, cols = Hf.row[lower], Hf.col[lower]
         if np.any(rows - cols > BAND):
-            raise RuntimeError("the Hessian is not banded in node order")
+            raise StitchSwitchError("the Hessian is not banded in node order")
         ab = np.zeros((BAND + 1, order.size))
         np.add.at(ab, (rows - cols, cols), Hf.data[lower] / (D[rows] * D[cols]))
         return D, ab
@@ -240,8 +241,6 @@ class ShellModel:
         if globalization == "eigen":
             return self._solve_eigen(x0, tol, max_iter)
         if globalization != "diagonal":
-            from stitchswitch.errors import InvalidInputError
-
             raise InvalidInputError(f"globalization: {globalization!r} is not 'diagonal' or 'eigen'")
         t0 = time.perf_counter()
         x = np.array(x0, dtype=float)
@@ -249,7 +248,7 @@ class ShellModel:
         shift, it, converged = 0.0, 0, False
         E = self.energy(x)
         if not np.isfinite(E):
-            raise ValueError("the start is outside the energy's domain")
+            raise InvalidInputError("the start is outside the energy's domain (a stretch or radius <= 0)")
         while True:
             E, g, H = self.derivatives(x)
             gf = g[free]
@@ -306,7 +305,7 @@ class ShellModel:
         t0 = time.perf_counter()
         x = np.array(x0, dtype=float)
         if not np.isfinite(self.energy(x)):
-            raise ValueError("the start is outside the energy's domain")
+            raise InvalidInputError("the start is outside the energy's domain (a stretch or radius <= 0)")
         order = self._node_order()
         it = 0
         stretch = self.stretches(x)
