@@ -1,9 +1,12 @@
-"""Discretization variants of single terms, used to measure where the reduced model's error
-against the shell reference comes from (``fem_reference.check``). Not used by default.
+"""Discretization variants, used to measure where the reduced model's error comes from
+(``fem_reference.check``, tests/test_convergence.py). Not used by default.
 
 ``hoop_node_average`` and ``hardening_node_average``: the circumferential strain of node i+1
 with the rest metric and stiffness averaged over its two segments, instead of the paper's
 "segment i's values at node i+1" (which puts the boundary node's ring fully inside the patch).
+
+``BOUNDARY_TRAPEZOID``: the model with the boundary node's ring split half inside, half outside
+(the trapezoid rule, ``boundary_ring``): second-order convergence of r_a.
 """
 from __future__ import annotations
 
@@ -11,7 +14,15 @@ import dataclasses
 
 import numpy as np
 
-from stitchswitch.reduced.model.terms import bending, circumferential, compression, hardening, radial
+from stitchswitch.reduced.model.terms import (
+    ALL_TERMS,
+    bending,
+    boundary_ring,
+    circumferential,
+    compression,
+    hardening,
+    radial,
+)
 
 
 def _node_average(a: np.ndarray) -> np.ndarray:
@@ -38,3 +49,6 @@ hardening_node_average = dataclasses.replace(hardening.TERM, name="hardening_nod
 #: The full term set with the node-averaged hoop quadrature.
 HOOP_NODE_AVERAGE_TERMS = (radial.TERM, compression.TERM, hoop_node_average, hardening_node_average,
                            bending.TERM)
+
+#: The model with the trapezoid rule for the boundary node's ring.
+BOUNDARY_TRAPEZOID = ALL_TERMS + (boundary_ring.TERM,)

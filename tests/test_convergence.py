@@ -1,0 +1,95 @@
+"""Observed convergence order of the reduced model in the node count N, against theory.
+
+The domain is held fixed (dR_max = 0.5 mm x 300 / N, so the spacing halves as N doubles) and
+the order is fitted from three refinements: p = log2(|q_N - q_2N| / |q_2N - q_4N|). On designs
+whose equilibrium is taut everywhere (the solution is smooth), the paper's indexing of the
+boundary node's ring is a first-order quadrature and the trapezoid rule (``boundary_ring``) a
+second-order one. Designs with slack segments and h converge more slowly; docs/model.md
+reports the measured orders there and why.
+"""
+import math
+
+import numpy as np
+import pytest
+
+from stitchswitch import DEFAULT_MATERIAL, Patch, solve
+from stitchswitch.reduced.model import assembly
+from stitchswitch.reduced.model.discretization import make_grid
+from stitchswitch.reduced.model.terms import ALL_TERMS, boundary_ring
+from stitchswitch.reduced.model.terms.hardening import h
+from stitchswitch.reduced.model.terms.variants import BOUNDARY_TRAPEZOID
+
+from helpers import fd_gradient, fd_jacobian, pack, random_state
+
+TAUT_DESIGNS = [(90.0, 1.0), (70.0, 1.0), (60.0, 0.9)]
+LEVELS = (150, 300, 600)
+
+
+def observed_order(values) -> float:
+    a, b, c = values
+    return math.log2(abs(a - b) / abs(b - c))
+
+
+def r_a_by_level(d, p, terms):
+    out = []
+    for n in LEVELS:
+        material = DEFAULT_MATERIAL.replace(n_nodes=n, dr_max_mm=0.5 * 300 / n)
+        sol = solve(Patch(d, p), material, terms=terms)
+        assert sol.converged
+        out.append(sol.keypoints.r_a_mm)
+    return out
+
+
+@pytest.mark.parametrize("d, p", TAUT_DESIGNS)
+def test_printed_boundary_quadrature_is_first_order(d, p):
+    assert observed_order(r_a_by_level(d, p, None)) == pytest.approx(1.0, abs=0.2)
+
+
+@pytest.mark.parametrize("d, p", TAUT_DESIGNS)
+def test_trapezoid_boundary_quadrature_is_second_order(d, p):
+    values = r_a_by_level(d, p, BOUNDARY_TRAPEZOID)
+    assert observed_order(values) == pytest.approx(2.0, abs=0.35)
+    # and the error at N = 300 is a small fraction of the printed rule's
+    printed = r_a_by_level(d, p, None)
+    assert abs(values[1] - values[2]) < 0.2 * abs(printed[1] - printed[2])
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_boundary_ring_derivatives_match_finite_differences(small_grid, seed):
+    r, z = random_state(small_grid, seed)
+    x = pack(r, z)
+    terms = (boundary_ring.TERM,)
+    _, g, hb = assembly.derivatives(r, z, small_grid, terms)
+
+    def energy(y):
+        return assembly.energy(y[0::2], y[1::2], small_grid, terms)
+
+    def gradient(y):
+        return assembly.gradient(y[0::2], y[1::2], small_grid, terms)
+
+    np.testing.assert_allclose(g, fd_gradient(energy, x), rtol=0, atol=1e-6 * np.max(np.abs(g)))
+    H = assembly.band_to_dense(hb)
+    np.testing.assert_allclose(H, fd_jacobian(gradient, x), rtol=0, atol=1e-6 * np.max(np.abs(H)))
+
+
+def test_trapezoid_total_is_the_trapezoid_rule():
+    """The hoop and hardening energy of BOUNDARY_TRAPEZOID, written out independently: every
+    node's ring with its segment's values, but the boundary node half inside, half outside."""
+    material = DEFAULT_MATERIAL.replace(n_nodes=60, w_log=0.5, gamma_mm=1.0)
+    grid = make_grid(Patch(30.0, 0.8), material)
+    rng = np.random.default_rng(3)
+    R = grid.R
+    r = R * (1.0 + rng.uniform(-0.05, 0.3, R.size))
+    r[0] = 0.0
+    z = np.linspace(2.0, 0.0, R.size)
+    n, N = grid.n_inside, grid.n_nodes
+
+    def ring(j, side):                    # side: the segment whose values node j takes
+        lam, k = grid.lam[side], grid.k_theta[side]
+        eps = r[j] - lam * R[j]
+        return (k * eps ** 2 / (lam * R[j]) + grid.w_log * h(eps, grid.gamma)[0]) / N
+
+    want = sum(ring(j, j - 1) for j in range(1, N) if j != n) + 0.5 * (ring(n, n - 1) + ring(n, n))
+    others = tuple(t for t in ALL_TERMS if t.name not in ("circumferential", "hardening"))
+    got = assembly.energy(r, z, grid, BOUNDARY_TRAPEZOID) - assembly.energy(r, z, grid, others)
+    assert got == pytest.approx(float(want), rel=1e-12)
