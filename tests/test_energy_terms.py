@@ -9,7 +9,8 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model import assembly
 from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
-from stitchswitch.reduced.model.terms import ALL_TERMS, bending, gravity, hardening, hoop_bending, natural_curvature
+from stitchswitch.reduced.model.terms import ALL_TERMS, bending, hardening
+from stitchswitch.reduced.model.terms.extra import gravity, hoop_bending, natural_curvature
 
 from helpers import fd_gradient as _fd_gradient
 from helpers import fd_jacobian, random_state

@@ -7,9 +7,10 @@ offset, ``coefficients(grid)`` (computed once per design), ``energy(r, z, coef)`
 * The model (Eq. 6 plus the slack regularization): ``radial``, ``compression``,
   ``circumferential``, ``hardening``, ``bending``, each exposing ``TERM``; ``ALL_TERMS``.
 * Physics the model leaves out, used by the discovery effects (``validation.discovery.effects``):
-  ``hoop_bending``, ``natural_curvature``, ``gravity`` (factories ``term(...)``) and
+  ``extra/`` (``hoop_bending``, ``natural_curvature``, ``gravity``: factories ``term(...)``) and
   ``hardening.with_weight``.
-* ``variants``: discretization variants of single terms.
+* ``variants``: discretization variants (``BOUNDARY_TRAPEZOID`` with ``boundary_ring``, the
+  trapezoid rule for the boundary node's ring; the node-averaged hoop term).
 * Shared kernels: ``segment`` (scattering into the global arrays), ``hinge`` (the chain rule of
   the hinge energies).
 

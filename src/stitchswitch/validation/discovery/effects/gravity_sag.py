@@ -1,6 +1,6 @@
 """``gravity_sag``: NOT in the library. A control effect for testing the discovery workflow.
 
-The patch's own weight (``reduced.model.terms.gravity``): E_g = (g / N) sum_i m_i z_i with the
+The patch's own weight (``reduced.model.terms.extra.gravity``): E_g = (g / N) sum_i m_i z_i with the
 ring mass m_i = R_i (1 + mu p^2 inside the patch, mu = ``EMBROIDERY_MASS_RATIO``). It lowers
 the dome. Any g > 0 makes the flat state a constrained local minimum (the sign constraint
 z' <= 0 holds it against its own weight), so a cold solve from the released state often ends
@@ -13,7 +13,7 @@ not there (a false discovery).
 """
 from __future__ import annotations
 
-from stitchswitch.reduced.model.terms import gravity
+from stitchswitch.reduced.model.terms.extra import gravity
 from stitchswitch.validation.discovery.effects.registry import Effect, EffectParameter, register_control
 
 #: Mass of the embroidery per rest area relative to the fabric's, at p = 1.

@@ -2,12 +2,12 @@
 
 The shell reference's density has the bending term B r l (kappa_s^2 + H kappa_t^2); the reduced
 model keeps only the meridional curvature kappa_s. The effect adds the hoop part with weight H
-(``reduced.model.terms.hoop_bending``, its discretization and derivatives): H = 1 is an isotropic
+(``reduced.model.terms.extra.hoop_bending``, its discretization and derivatives): H = 1 is an isotropic
 shell with the model's bending stiffness, H = 0 the starting model.
 """
 from __future__ import annotations
 
-from stitchswitch.reduced.model.terms import hoop_bending
+from stitchswitch.reduced.model.terms.extra import hoop_bending
 from stitchswitch.validation.discovery.effects.registry import Effect, EffectParameter, register_effect
 
 EFFECT = register_effect(Effect(

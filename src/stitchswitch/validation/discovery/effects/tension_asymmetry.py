@@ -3,13 +3,13 @@
 Unequal top and bobbin thread tension makes a stitched layer curl. The effect gives the
 meridional bending of the patch (Eq. 4) a natural curvature kappa p^2 (1/mm, weighted by p^2
 like every embroidered property of the model): per hinge w (T - T_0)^2 instead of w T^2, added
-as the difference (``reduced.model.terms.natural_curvature``, its discretization and
+as the difference (``reduced.model.terms.extra.natural_curvature``, its discretization and
 derivatives). kappa > 0 curls the patch towards the pop-up dome; kappa = 0 is the starting
 model.
 """
 from __future__ import annotations
 
-from stitchswitch.reduced.model.terms import natural_curvature
+from stitchswitch.reduced.model.terms.extra import natural_curvature
 from stitchswitch.validation.discovery.effects.registry import Effect, EffectParameter, register_effect
 
 EFFECT = register_effect(Effect(
