@@ -19,6 +19,7 @@ COMMANDS = {
     "force": "model.force:force",
     "validate": "validation.validate:validate",
     "calibrate": "model.calibrate:calibrate",
+    "sensitivity": "model.sensitivity:sensitivity",
     "discover": "validation.discover:discover",
     "fem-check": "reference.fem_check:fem_check_cmd",
     "switch-force": "reference.switch_force:switch_force",
