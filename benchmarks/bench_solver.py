@@ -5,7 +5,7 @@ targets are checked and printed:
 
 * on every design the certified solver's energy is no higher than Adam's (relative 1e-9),
 * its residual (projected-gradient certificate) is <= 1e-8,
-* its median cold solve time is <= 20 ms,
+* its median cold solve time is <= 3 ms and its worst <= 10 ms,
 * it is at least 20x faster than the Adam baseline (ratio of median times).
 
 Compiled kernels are loaded by one warm-up solve before timing (numba caches them on disk;
@@ -27,7 +27,8 @@ DIAMETERS_MM = (15, 25, 40, 55, 70, 85, 100)
 FILLS = (0.6, 0.8, 1.0)
 ENERGY_RTOL = 1e-9
 RESIDUAL_TARGET = 1e-8
-MEDIAN_MS_TARGET = 20.0
+MEDIAN_MS_TARGET = 3.0
+WORST_MS_TARGET = 10.0
 SPEEDUP_TARGET = 20.0
 
 
@@ -56,17 +57,19 @@ def run(adam_steps: int, repeats: int) -> dict:
             })
     med_n = statistics.median(x["certified_ms"] for x in designs)
     med_a = statistics.median(x["adam_ms"] for x in designs)
+    worst_n = max(x["certified_ms"] for x in designs)
     energy_ok = all(x["certified_energy"] <= x["adam_energy"] + ENERGY_RTOL * abs(x["adam_energy"])
                     for x in designs)
     residual_ok = all(x["certified_residual"] <= RESIDUAL_TARGET for x in designs)
     summary = {
         "n_designs": len(designs), "adam_steps": adam_steps,
-        "median_certified_ms": med_n, "median_adam_ms": med_a, "speedup": med_a / med_n,
+        "median_certified_ms": med_n, "worst_certified_ms": worst_n, "median_adam_ms": med_a, "speedup": med_a / med_n,
         "max_certified_residual": max(x["certified_residual"] for x in designs),
         "targets": {
             "energy_no_higher_than_adam": energy_ok,
             "residual_le_1e-8": residual_ok,
-            "median_cold_solve_le_20ms": med_n <= MEDIAN_MS_TARGET,
+            "median_cold_solve_le_3ms": med_n <= MEDIAN_MS_TARGET,
+            "worst_cold_solve_le_10ms": worst_n <= WORST_MS_TARGET,
             "speedup_ge_20x": med_a / med_n >= SPEEDUP_TARGET,
         },
     }
@@ -83,7 +86,8 @@ def print_table(result: dict) -> None:
               f"{x['adam_ms']:8.0f} {x['adam_energy']:12.6g} {x['adam_residual']:9.1e} "
               f"{x['adam_h_mm']:6.2f} | {rel:+.1e}")
     s = result["summary"]
-    print(f"\nmedian cold solve: certified {s['median_certified_ms']:.1f} ms (target <= 20), "
+    print(f"\nmedian cold solve: certified {s['median_certified_ms']:.1f} ms (target <= 3), worst "
+          f"{s['worst_certified_ms']:.1f} ms (target <= 10), "
           f"Adam {s['median_adam_ms']:.0f} ms; speedup {s['speedup']:.0f}x (target >= 20)")
     print(f"max certified residual {s['max_certified_residual']:.1e} (target <= 1e-8)")
     for name, ok in s["targets"].items():

@@ -187,18 +187,18 @@ def test_custom_terms_need_newton():
 def test_solve_runs_on_one_blas_thread_and_restores_the_callers_setting(monkeypatch):
     from threadpoolctl import threadpool_info
 
-    from stitchswitch.reduced.solvers import banded
+    from stitchswitch.reduced.solvers import newton_loop
 
     seen = []
-    real = banded.cholesky
+    real = newton_loop.fused_iterate
 
-    def spy(ab, shift=0.0):
+    def spy(*args):
         seen.append(max((p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"),
                         default=1))
-        return real(ab, shift)
+        return real(*args)
 
     before = [(p["filepath"], p["num_threads"]) for p in threadpool_info()]
-    monkeypatch.setattr(banded, "cholesky", spy)
+    monkeypatch.setattr(newton_loop, "fused_iterate", spy)
     solve(Patch(40.0, 0.8))
     assert seen and set(seen) == {1}
     assert [(p["filepath"], p["num_threads"]) for p in threadpool_info()] == before

@@ -43,14 +43,20 @@ class Model:
             total += term.energy(r, z, coef)
         return total if np.isfinite(total) else np.inf
 
+    def accumulate(self, r: np.ndarray, z: np.ndarray, grad: np.ndarray, hb: np.ndarray) -> float:
+        """Add the gradient into ``grad`` (2N,) and, if ``hb`` has columns, the banded Hessian
+        into ``hb`` (6, 2N), term by term in order; return the energy."""
+        total = 0.0
+        for term, coef in zip(self.terms, self._coefs):
+            total += term.accumulate(r, z, coef, grad, hb)
+        return total
+
     def derivatives(self, r: np.ndarray, z: np.ndarray, hessian: bool = True):
         """Energy, gradient (2N,) and banded Hessian (6, 2N) (None if ``hessian`` is False)."""
         n = 2 * self.grid.n_nodes
         grad = np.zeros(n)
         hb = np.zeros((BANDWIDTH + 1, n)) if hessian else NO_HESSIAN
-        total = 0.0
-        for term, coef in zip(self.terms, self._coefs):
-            total += term.accumulate(r, z, coef, grad, hb)
+        total = self.accumulate(r, z, grad, hb)
         return total, grad, (hb if hessian else None)
 
     def gradient(self, r: np.ndarray, z: np.ndarray) -> np.ndarray:

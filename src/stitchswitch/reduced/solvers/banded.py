@@ -1,13 +1,25 @@
 """Banded linear algebra for the Newton solver: restriction of the Hessian to the reduced
-variables of an active set, and a positive-definiteness-checking Cholesky solve."""
+variables of an active set, and a positive-definiteness-checking Cholesky solve.
+
+The factorization is compiled (``factor``, ``solve_factored``) rather than LAPACK's
+``dpbtrf``/``dpbtrs`` through scipy: the band is at most a few entries wide and ~600 long, so
+the factorization itself costs microseconds and a call through Python cost more than the work;
+compiled, the Newton loop (``newton_loop``) calls it without leaving numba. It is ``dpbtf2``'s
+algorithm (the unblocked right-looking Cholesky LAPACK uses for narrow bands) and reports
+failure the same way: info = j + 1 when the leading minor of order j + 1 is not positive
+definite (tests/test_banded.py compares it with scipy's LAPACK)."""
 from __future__ import annotations
+
+import math
 
 import numpy as np
 from numba import njit
-from scipy.linalg import eig_banded
-from scipy.linalg.lapack import dpbtrf, dpbtrs
 
-from stitchswitch.errors import StitchSwitchError
+#: LLVM may fuse a*b + c into one rounding (FMA) in the factorization, as the optimized BLAS
+#: kernels behind LAPACK do: then the factor is bit for bit LAPACK's on this machine, not just
+#: equal to round-off, and the solver's iterates follow the LAPACK solver's. No other
+#: fast-math relaxation is allowed.
+CONTRACT = {"contract"}
 
 
 @njit(cache=True)
@@ -47,24 +59,116 @@ def restrict(hb, dof_map, n_red):
     return ab
 
 
-def cholesky(ab: np.ndarray, shift: float = 0.0):
-    """Lower banded Cholesky factor of ab + shift I (LAPACK dpbtrf), or None if that is not
-    positive definite."""
-    m = ab.copy()
-    m[0] += shift
-    factor, info = dpbtrf(m, lower=1)
-    return factor if info == 0 else None
+@njit(cache=True, fastmath=CONTRACT)
+def factor(ab, shift):
+    """Lower banded Cholesky factor of ab + shift I (lower band storage, ``ab[k, j] =
+    A[j + k, j]``) and LAPACK's info: 0 on success, j + 1 if the leading minor of order j + 1
+    is not positive definite (then the factor is incomplete)."""
+    kd, n = ab.shape[0] - 1, ab.shape[1]
+    L = ab.copy()
+    for j in range(n):
+        L[0, j] += shift
+    for j in range(n):
+        ajj = L[0, j]
+        if not ajj > 0.0:                  # also catches NaN, as dpbtf2 does
+            return L, j + 1
+        ajj = math.sqrt(ajj)
+        L[0, j] = ajj
+        kn = min(kd, n - 1 - j)
+        inv = 1.0 / ajj
+        for p in range(1, kn + 1):
+            L[p, j] *= inv
+        for q in range(1, kn + 1):         # rank-1 update of the trailing block (dsyr)
+            t = -L[q, j]
+            for p in range(q, kn + 1):
+                L[p - q, j + q] += L[p, j] * t
+    return L, 0
 
 
-def solve(factor: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """Solve with a factor from ``cholesky`` (LAPACK dpbtrs)."""
-    x, info = dpbtrs(factor, rhs, lower=1)
-    if info != 0:
-        raise StitchSwitchError(f"banded solve: LAPACK dpbtrs failed with info={info}")
+@njit(cache=True, fastmath=CONTRACT)
+def solve_factored(L, rhs):
+    """Solve (L L^T) x = rhs with a factor from ``factor`` (dpbtrs: forward, then backward)."""
+    kd, n = L.shape[0] - 1, L.shape[1]
+    x = rhs.copy()
+    for j in range(n):
+        x[j] /= L[0, j]
+        t = x[j]
+        for p in range(1, min(kd, n - 1 - j) + 1):
+            x[j + p] -= t * L[p, j]
+    for j in range(n - 1, -1, -1):
+        t = 0.0
+        for p in range(1, min(kd, n - 1 - j) + 1):
+            t += L[p, j] * x[j + p]
+        x[j] = (x[j] - t) / L[0, j]
     return x
 
 
+def cholesky(ab: np.ndarray, shift: float = 0.0):
+    """Lower banded Cholesky factor of ab + shift I (``factor``), or None if that is not
+    positive definite."""
+    L, info = factor(np.ascontiguousarray(ab, dtype=float), float(shift))
+    return L if info == 0 else None
+
+
+def solve(factor_: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """Solve with a factor from ``cholesky``."""
+    return solve_factored(factor_, np.ascontiguousarray(rhs, dtype=float))
+
+
+@njit(cache=True)
+def _band_matvec(ab, x):
+    kd, n = ab.shape[0] - 1, ab.shape[1]
+    y = np.zeros(n)
+    for j in range(n):
+        y[j] += ab[0, j] * x[j]
+        for k in range(1, min(kd, n - 1 - j) + 1):
+            y[j + k] += ab[k, j] * x[j]
+            y[j] += ab[k, j] * x[j + k]
+    return y
+
+
+@njit(cache=True)
+def lowest_mode_compiled(ab):
+    """``lowest_mode``: bisection on sigma with the Cholesky test (A - sigma I is positive
+    definite iff sigma < lambda_min), from a Gershgorin lower bound up to 0, to a width of
+    1e-13 times the largest entry; then inverse iteration with the last definite shift (a few
+    solves: the shift is within that width of lambda_min) and the Rayleigh quotient."""
+    kd, n = ab.shape[0] - 1, ab.shape[1]
+    scale, lo = 0.0, math.inf
+    for i in range(n):
+        off = 0.0
+        for k in range(1, kd + 1):
+            if i + k < n:
+                off += abs(ab[k, i])
+            if i - k >= 0:
+                off += abs(ab[k, i - k])
+        lo = min(lo, ab[0, i] - off)
+        for k in range(kd + 1):
+            scale = max(scale, abs(ab[k, i]))
+    scale = scale if scale > 0.0 else 1.0
+    lo = min(lo, 0.0) - 1e-3 * scale
+    hi = 0.0
+    if factor(ab, -hi)[1] == 0:
+        lo = hi
+    while hi - lo > 1e-13 * scale:
+        mid = 0.5 * (lo + hi)
+        if factor(ab, -mid)[1] == 0:
+            lo = mid
+        else:
+            hi = mid
+    L, info = factor(ab, -lo)
+    x = np.empty(n)
+    for i in range(n):
+        x[i] = 1.0 + 0.5 * math.sin(1.0 + i)       # deterministic, not orthogonal to a mode
+    for _ in range(4):
+        x = solve_factored(L, x)
+        x /= math.sqrt(np.sum(x * x))
+    return np.sum(x * _band_matvec(ab, x)), x
+
+
 def lowest_mode(ab: np.ndarray) -> tuple[float, np.ndarray]:
-    """Smallest eigenvalue and its unit eigenvector of a symmetric lower-banded matrix."""
-    w, v = eig_banded(ab, lower=True, select="i", select_range=(0, 0), check_finite=False)
-    return float(w[0]), v[:, 0]
+    """Smallest eigenvalue and its unit eigenvector of a symmetric lower-banded matrix
+    (``lowest_mode_compiled``: LAPACK's dsbevx through scipy formed a dense n x n transform and
+    cost 6-20 ms per saddle escape for ~600 unknowns)."""
+    lam, v = lowest_mode_compiled(np.ascontiguousarray(ab, dtype=float))
+    return float(lam), v

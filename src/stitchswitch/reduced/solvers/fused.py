@@ -1,0 +1,96 @@
+"""The default energy compiled as one function: the kernels of ``terms.ALL_TERMS`` called in a
+fixed order, so the Newton loop (``newton_loop``) evaluates the energy, gradient and banded
+Hessian without returning to Python.
+
+``coefficients(terms, grid)`` decides whether a term tuple can take this path: its terms must
+have the default terms' kernels in the default order (their ``energy`` and ``accumulate`` are
+the very same functions, as for every ``dataclasses.replace`` variant such as
+``terms.variants`` or a grid transform of the discovery effects); only the coefficients may
+differ. It returns the coefficients as a tuple per term, or None for any other tuple, which
+the solver evaluates through ``assembly.Model`` instead. Each kernel is called with the same
+arguments as ``Term.energy``/``Term.accumulate`` and the terms are summed in the same order, so
+both paths give the same numbers (tests/test_fused.py).
+
+numba's on-disk cache of these functions does not notice an edit of a kernel module they call:
+after changing a term kernel, clear the ``__pycache__`` of this folder (tests/test_fused.py
+fails on a stale cache, because the Python path recompiles the kernel itself).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from stitchswitch.reduced.model.terms import ALL_TERMS, bending, circumferential, compression, hardening, radial
+from stitchswitch.reduced.model.terms.segment import BANDWIDTH
+
+#: Array dimensions (-1: a scalar) of each default term's coefficients, in assembly order.
+LAYOUT = ((1, 1), (1, 1), (1, 1), (1, -1, -1), (1, 2, 2))
+
+
+def _prepared(value, ndim: int):
+    """A coefficient as the compiled functions take it, or None if it has another shape."""
+    if ndim < 0:
+        return float(value) if np.ndim(value) == 0 else None
+    a = np.ascontiguousarray(value, dtype=float)
+    return a if a.ndim == ndim else None
+
+
+def coefficients(terms, grid):
+    """The per-term coefficient tuples of ``terms`` on ``grid`` if they have the default
+    kernels in the default order (see the module docstring), else None."""
+    terms = tuple(terms)
+    if len(terms) != len(ALL_TERMS) or any(
+            t.energy is not d.energy or t.accumulate is not d.accumulate
+            for t, d in zip(terms, ALL_TERMS)):
+        return None
+    out = []
+    for term, layout in zip(terms, LAYOUT):
+        coef = tuple(term.coefficients(grid))
+        if len(coef) != len(layout):
+            return None
+        coef = tuple(_prepared(v, k) for v, k in zip(coef, layout))
+        if any(v is None for v in coef):
+            return None
+        out.append(coef)
+    return tuple(out)
+
+
+@njit(cache=True)
+def in_domain(r, z):
+    """``assembly.in_domain``: finite coordinates and r_i > 0 for i >= 1."""
+    for i in range(r.size):
+        if not (math.isfinite(r[i]) and math.isfinite(z[i])):
+            return False
+        if i > 0 and not r[i] > 0.0:
+            return False
+    return True
+
+
+@njit(cache=True)
+def energy(r, z, c):
+    """Total energy (``assembly.Model.energy``); +inf outside the domain."""
+    if not in_domain(r, z):
+        return math.inf
+    no_g, no_h = np.zeros(0), np.zeros((BANDWIDTH + 1, 0))
+    total = 0.0
+    total += radial._kernel(r, z, c[0][0], c[0][1], no_g, no_h, False, False)
+    total += compression._kernel(r, z, c[1][0], c[1][1], no_g, no_h, False, False)
+    total += circumferential._kernel(r, z, c[2][0], c[2][1], no_g, no_h, False, False)
+    total += hardening._kernel(r, z, c[3][0], c[3][1], c[3][2], no_g, no_h, False, False)
+    total += bending._energy(r, z, c[4][0])
+    return total if math.isfinite(total) else math.inf
+
+
+@njit(cache=True)
+def derivatives(r, z, c, grad, hb, want_h):
+    """Add the gradient into ``grad`` (2N,) and, if ``want_h``, the banded Hessian into ``hb``
+    (6, 2N); return the energy (``assembly.Model.accumulate``)."""
+    total = 0.0
+    total += radial._kernel(r, z, c[0][0], c[0][1], grad, hb, True, want_h)
+    total += compression._kernel(r, z, c[1][0], c[1][1], grad, hb, True, want_h)
+    total += circumferential._kernel(r, z, c[2][0], c[2][1], grad, hb, True, want_h)
+    total += hardening._kernel(r, z, c[3][0], c[3][1], c[3][2], grad, hb, True, want_h)
+    total += bending._kernel(r, z, c[4][0], grad, hb, want_h, c[4][1], c[4][2])
+    return total

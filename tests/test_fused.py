@@ -1,0 +1,76 @@
+"""The fused compiled energy (``solvers.fused``) against the Python assembly of the same terms,
+and the compiled Newton loop against the interpreted one."""
+import dataclasses
+
+import numpy as np
+import pytest
+
+from stitchswitch import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.model import assembly
+from stitchswitch.reduced.model.discretization import make_grid
+from stitchswitch.reduced.model.terms import ALL_TERMS, variants
+from stitchswitch.reduced.model.terms.extra import gravity
+from stitchswitch.reduced.solvers import continuation, fused, newton
+
+
+def _state(grid, seed):
+    rng = np.random.default_rng(seed)
+    r, z = continuation.released_state(grid)
+    r = r * (1.0 + 0.02 * rng.standard_normal(r.size))
+    r[0] = 0.0
+    z = np.sort(z + rng.uniform(0.0, 0.5, z.size))[::-1].copy()
+    return r, z - z[-1]
+
+
+@pytest.mark.parametrize("terms", [ALL_TERMS, variants.HOOP_NODE_AVERAGE_TERMS],
+                         ids=["default", "hoop_node_average"])
+@pytest.mark.parametrize("design", [(15.0, 0.6), (40.0, 0.8), (100.0, 1.0)])
+def test_fused_derivatives_equal_the_python_assembly(terms, design):
+    grid = make_grid(Patch(*design), DEFAULT_MATERIAL)
+    coef = fused.coefficients(terms, grid)
+    assert coef is not None
+    model = assembly.Model(grid, terms)
+    for seed in range(3):
+        r, z = _state(grid, seed)
+        E, g, hb = model.derivatives(r, z)
+        grad, band = np.zeros_like(g), np.zeros_like(hb)
+        E_f = fused.derivatives(r, z, coef, grad, band, True)
+        np.testing.assert_allclose(E_f, E, rtol=1e-14)
+        np.testing.assert_allclose(grad, g, rtol=1e-13, atol=1e-15)
+        np.testing.assert_allclose(band, hb, rtol=1e-13, atol=1e-15)
+        np.testing.assert_allclose(fused.energy(r, z, coef), model.energy(r, z), rtol=1e-14)
+
+
+def test_fused_energy_is_infinite_outside_the_domain():
+    grid = make_grid(Patch(40.0, 0.8), DEFAULT_MATERIAL)
+    coef = fused.coefficients(ALL_TERMS, grid)
+    r, z = continuation.released_state(grid)
+    r[5] = -1.0
+    assert fused.energy(r, z, coef) == np.inf == assembly.Model(grid).energy(r, z)
+    r[5] = np.nan
+    assert fused.energy(r, z, coef) == np.inf
+
+
+def test_other_term_tuples_take_the_python_path():
+    grid = make_grid(Patch(40.0, 0.8), DEFAULT_MATERIAL)
+    assert fused.coefficients(ALL_TERMS + (gravity.term(1e-3, 0.8, 2.0),), grid) is None
+    assert fused.coefficients(ALL_TERMS[::-1], grid) is None
+    assert fused.coefficients(ALL_TERMS[:-1], grid) is None
+
+
+@pytest.mark.parametrize("design", [(25.0, 1.0), (70.0, 0.6)])
+def test_compiled_and_interpreted_newton_reach_the_same_certified_state(design):
+    grid = make_grid(Patch(*design), DEFAULT_MATERIAL)
+    r0, z0 = continuation.released_state(grid)
+    bending = ALL_TERMS[-1]
+    wrapped = dataclasses.replace(bending, accumulate=lambda r, z, c, g, h: bending.accumulate(r, z, c, g, h))
+    interpreted_terms = ALL_TERMS[:-1] + (wrapped,)
+    assert fused.coefficients(interpreted_terms, grid) is None
+    a = newton.minimize(grid, r0, z0, tol=1e-11, max_iter=300)
+    b = newton.minimize(grid, r0, z0, tol=1e-11, max_iter=300, terms=interpreted_terms)
+    assert a.converged and b.converged and a.second_order and b.second_order
+    np.testing.assert_allclose(a.energy, b.energy, rtol=1e-12)
+    np.testing.assert_allclose(a.z, b.z, atol=1e-6)
+    np.testing.assert_allclose(a.r, b.r, atol=1e-6)
+    again = newton.minimize(grid, r0, z0, tol=1e-11, max_iter=300)
+    assert np.array_equal(again.z, a.z) and again.iterations == a.iterations     # deterministic
