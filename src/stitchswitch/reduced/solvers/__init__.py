@@ -2,8 +2,11 @@
 
 * ``solve``: ``solve(patch, material) -> Solution``, the public entry point (also
   ``stitchswitch.solve``).
-* ``newton``: the certified projected Newton method; ``banded``: its banded linear algebra;
-  ``constraints``: the bound constraints, projection and KKT residual.
+* ``newton``: the certified projected Newton method; ``newton_loop``: its iterations, compiled
+  (``fused``: the default energy as one compiled function; ``step``: active set, reduced
+  variables and shifted Newton direction; ``retraction``: the polar step; ``banded``: banded
+  Cholesky, restriction, lowest mode); ``constraints``: the bound constraints, projection and KKT
+  residual.
 * ``continuation``: starting states (the released state, the release continuation).
 * ``adam``: the paper's projected Adam, kept as a baseline.
 
