@@ -26,7 +26,7 @@ from stitchswitch.reduced.model.terms import ALL_TERMS, bending, circumferential
 from stitchswitch.reduced.model.terms.segment import BANDWIDTH
 
 #: Array dimensions (-1: a scalar) of each default term's coefficients, in assembly order.
-LAYOUT = ((1, 1), (1, 1), (1, 1), (1, -1, -1), (1, 2, 2))
+LAYOUT = ((1, 1), (1, 1, 1), (1, 1), (1, -1, -1), (1, 2, 2))
 
 
 def _prepared(value, ndim: int):
@@ -76,7 +76,7 @@ def energy(r, z, c):
     no_g, no_h = np.zeros(0), np.zeros((BANDWIDTH + 1, 0))
     total = 0.0
     total += radial._kernel(r, z, c[0][0], c[0][1], no_g, no_h, False, False)
-    total += compression._kernel(r, z, c[1][0], c[1][1], no_g, no_h, False, False)
+    total += compression._kernel(r, z, c[1][0], c[1][1], c[1][2], no_g, no_h, False, False)
     total += circumferential._kernel(r, z, c[2][0], c[2][1], no_g, no_h, False, False)
     total += hardening._kernel(r, z, c[3][0], c[3][1], c[3][2], no_g, no_h, False, False)
     total += bending._energy(r, z, c[4][0])
@@ -89,7 +89,7 @@ def derivatives(r, z, c, grad, hb, want_h):
     (6, 2N); return the energy (``assembly.Model.accumulate``)."""
     total = 0.0
     total += radial._kernel(r, z, c[0][0], c[0][1], grad, hb, True, want_h)
-    total += compression._kernel(r, z, c[1][0], c[1][1], grad, hb, True, want_h)
+    total += compression._kernel(r, z, c[1][0], c[1][1], c[1][2], grad, hb, True, want_h)
     total += circumferential._kernel(r, z, c[2][0], c[2][1], grad, hb, True, want_h)
     total += hardening._kernel(r, z, c[3][0], c[3][1], c[3][2], grad, hb, True, want_h)
     total += bending._kernel(r, z, c[4][0], grad, hb, want_h, c[4][1], c[4][2])
