@@ -11,9 +11,9 @@ the solver evaluates through ``assembly.Model`` instead. Each kernel is called w
 arguments as ``Term.energy``/``Term.accumulate`` and the terms are summed in the same order, so
 both paths give the same numbers (tests/test_fused.py).
 
-numba's on-disk cache of these functions does not notice an edit of a kernel module they call:
-after changing a term kernel, clear the ``__pycache__`` of this folder (tests/test_fused.py
-fails on a stale cache, because the Python path recompiles the kernel itself).
+numba's on-disk cache of these functions does not notice an edit of a kernel module they call;
+``reduced.model.kernel_cache`` clears the cache whenever a kernel source changes (and
+tests/test_fused.py would fail on a stale one, because the Python path recompiles the kernel).
 """
 from __future__ import annotations
 

@@ -18,8 +18,12 @@ The loops are compiled with numba: for N = 300 a Python/numpy version spends its
 per-call overhead (0.6 ms per Hessian against 0.06 ms compiled), and the calibration and the
 design-space map need thousands of solves. Assembly is in ``..assembly``.
 """
-from stitchswitch.reduced.model.terms import bending, circumferential, compression, hardening, radial
-from stitchswitch.reduced.model.terms.protocol import Term
+from stitchswitch.reduced.model import kernel_cache
+
+kernel_cache.guard()     # before any kernel is loaded from numba's cache (kernel_cache)
+
+from stitchswitch.reduced.model.terms import bending, circumferential, compression, hardening, radial  # noqa: E402
+from stitchswitch.reduced.model.terms.protocol import Term  # noqa: E402
 
 #: The terms of Eq. 6 plus the slack regularization, in assembly order.
 ALL_TERMS = (radial.TERM, compression.TERM, circumferential.TERM, hardening.TERM, bending.TERM)
