@@ -1,5 +1,5 @@
 """Examples as tests: every ``console`` block of docs/guide.md runs, top to bottom, in one fresh
-folder, as a user would type it. A ``$`` line is a command (``>`` lines continue it); the lines
+folder, as a user would type it, and so does every README.md block that shows output. A ``$`` line is a command (``>`` lines continue it); the lines
 after it are its expected output, each of which must appear in the real output in order (times
 such as ``0.03 s`` are masked; ``...`` skips lines). Commands must exit 0 unless the line ends in
 ``# exit N``."""
@@ -12,6 +12,7 @@ import pytest
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"
 GUIDE = DOCS / "guide.md"
+README = DOCS.parent / "README.md"
 TIME = re.compile(r"\d+(\.\d+)? (ms|s)\b")
 
 
@@ -80,6 +81,18 @@ def test_guide_examples_run(tmp_path):
     assert (tmp_path / "pocket-demo" / "summary.html").is_file()
     assert (tmp_path / "fabrication" / "hoop01.jef").is_file()
     assert (tmp_path / "my-material.json").is_file()
+
+
+def test_readme_examples_with_output_run(tmp_path):
+    """The README's console blocks that show output (the others only list commands on files
+    the reader brings) print what the README says."""
+    shown = [c for b in blocks(README.read_text()) for c in commands(b) if c[1]]
+    assert shown
+    for command, expected, code in shown:
+        r = subprocess.run(["bash", "-c", shell(command)], cwd=tmp_path, capture_output=True,
+                           text=True, timeout=300)
+        assert r.returncode == code, f"{command!r} exited {r.returncode}:\n{r.stdout}\n{r.stderr}"
+        assert_output(expected, r.stdout, command)
 
 
 def test_output_matching_can_fail():
