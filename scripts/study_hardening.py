@@ -1,6 +1,10 @@
-"""How much of the shipped design map rests on the quadratic continuation of the hardening term
-(docs/model.md, "Compression as physics", where this stands): the largest eps_theta / gamma over
-the map and the number of designs with a node past the cutoff (1 - CUTOFF) gamma.
+"""How much of the predictions rests on the hardening term and on its quadratic continuation
+past the cutoff (1 - CUTOFF) gamma (docs/model.md, "Compression as physics", where this stands):
+
+1. over the shipped design map, the largest eps_theta / gamma and the designs with a node past
+   the cutoff;
+2. at the paper's 25 calibration designs, the share of the hardening energy that comes from
+   the continuation, and how far h moves when the limit gamma is raised tenfold (3 -> 30 mm).
 
 Usage: python scripts/study_hardening.py
 """
@@ -8,10 +12,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from stitchswitch import Patch
+from stitchswitch import DEFAULT_MATERIAL, Patch, solve
 from stitchswitch.reduced.design_space.cache import default_map
 from stitchswitch.reduced.model.discretization import make_grid
-from stitchswitch.reduced.model.terms.hardening import CUTOFF
+from stitchswitch.reduced.model.terms.hardening import CUTOFF, h
+
+DESIGNS = [(d, p) for p in (0.6, 0.7, 0.8, 0.9, 1.0) for d in (20.0, 40.0, 60.0, 70.0, 90.0)]
 
 
 def main() -> None:
@@ -32,6 +38,23 @@ def main() -> None:
     print(f"designs with a node past {1 - CUTOFF:g} gamma: {int(np.sum(past > 0))} of {past.size}")
     for limit in (0.5, 0.9, 1.0):
         print(f"designs with eps_theta / gamma above {limit:g}: {int(np.sum(ratio > limit))}")
+
+    shares, moves = [], []
+    for d, p in DESIGNS:
+        sol = solve(Patch(d, p), DEFAULT_MATERIAL)
+        grid = make_grid(Patch(d, p), DEFAULT_MATERIAL)
+        eps = sol.r_mm[1:] / grid.dr_mm - grid.lam * np.arange(1, grid.n_nodes)
+        es = (1.0 - CUTOFF) * grid.gamma
+        total = np.sum(h(eps, grid.gamma)[0])
+        below = np.sum(h(np.minimum(eps, es), grid.gamma)[0])
+        shares.append((total - below) / total if total > 0 else 0.0)
+        far = solve(Patch(d, p), DEFAULT_MATERIAL.replace(gamma_mm=10 * DEFAULT_MATERIAL.gamma_mm))
+        moves.append(far.keypoints.h_mm - sol.keypoints.h_mm)
+    shares, moves = np.array(shares), np.array(moves)
+    print(f"calibration designs: share of the hardening energy past the cutoff: median "
+          f"{np.median(shares):.1%}, max {shares.max():.1%}, nonzero at {int(np.sum(shares > 0))} of 25")
+    print(f"calibration designs: h with gamma x 10 minus h: median {np.median(moves):+.2f} mm, "
+          f"max {moves.max():+.2f} mm, min {moves.min():+.2f} mm")
 
 
 if __name__ == "__main__":
