@@ -59,12 +59,38 @@ def restrict(hb, dof_map, n_red):
     return ab
 
 
+@njit(cache=True)
+def envelope(ab):
+    """Per column j, how many subdiagonal entries of its Cholesky factor can be nonzero: the
+    last nonzero of column j of A, or the fill of an earlier column reaching below it
+    (Cholesky fills a column only between its diagonal and the lowest row an earlier column
+    reaches). A long merged z group makes the band wide (its height couples to every r of the
+    group) but only its own columns long; every other column keeps a few entries."""
+    kd, n = ab.shape[0] - 1, ab.shape[1]
+    ends = np.empty(n, dtype=np.int64)
+    reach = -1                             # lowest row reached by an earlier column
+    for j in range(n):
+        h = 0
+        for k in range(min(kd, n - 1 - j), 0, -1):
+            if ab[k, j] != 0.0:            # NaN counts as nonzero
+                h = k
+                break
+        reach = max(reach, j + h)
+        ends[j] = reach - j
+    return ends
+
+
 @njit(cache=True, fastmath=CONTRACT)
 def factor(ab, shift):
     """Lower banded Cholesky factor of ab + shift I (lower band storage, ``ab[k, j] =
     A[j + k, j]``) and LAPACK's info: 0 on success, j + 1 if the leading minor of order j + 1
-    is not positive definite (then the factor is incomplete)."""
-    kd, n = ab.shape[0] - 1, ab.shape[1]
+    is not positive definite (then the factor is incomplete).
+
+    Each column is eliminated only down to its ``envelope``: below it the factor is exactly
+    zero, so the operations skipped would add zeros (the factor is dpbtf2's bit for bit, at a
+    cost that grows with the long columns only, not with the band's widest column)."""
+    n = ab.shape[1]
+    ends = envelope(ab)
     L = ab.copy()
     for j in range(n):
         L[0, j] += shift
@@ -74,7 +100,7 @@ def factor(ab, shift):
             return L, j + 1
         ajj = math.sqrt(ajj)
         L[0, j] = ajj
-        kn = min(kd, n - 1 - j)
+        kn = ends[j]
         inv = 1.0 / ajj
         for p in range(1, kn + 1):
             L[p, j] *= inv
@@ -87,17 +113,19 @@ def factor(ab, shift):
 
 @njit(cache=True, fastmath=CONTRACT)
 def solve_factored(L, rhs):
-    """Solve (L L^T) x = rhs with a factor from ``factor`` (dpbtrs: forward, then backward)."""
-    kd, n = L.shape[0] - 1, L.shape[1]
+    """Solve (L L^T) x = rhs with a factor from ``factor`` (dpbtrs: forward, then backward),
+    each column only down to its ``envelope`` (the factor is zero below it)."""
+    n = L.shape[1]
+    ends = envelope(L)
     x = rhs.copy()
     for j in range(n):
         x[j] /= L[0, j]
         t = x[j]
-        for p in range(1, min(kd, n - 1 - j) + 1):
+        for p in range(1, ends[j] + 1):
             x[j + p] -= t * L[p, j]
     for j in range(n - 1, -1, -1):
         t = 0.0
-        for p in range(1, min(kd, n - 1 - j) + 1):
+        for p in range(1, ends[j] + 1):
             t += L[p, j] * x[j + p]
         x[j] = (x[j] - t) / L[0, j]
     return x

@@ -77,12 +77,16 @@ def hinge_hessian(H, C, V, W, c, FX, FY, FD, hess_x, hess_dot, m0, m1, la, lb,
     C[6, 7] = C[7, 6] = FY       # Hess Y contains grad|a| x grad|b| + transpose
     ca = FD * m0 + FY * lb       # coefficient of Hess |a|
     cb = FD * m1 + FY * la
-    for k in range(8):
-        for s in range(6):
-            acc = 0.0
-            for m in range(8):
-                acc += C[k, m] * V[m, s]
-            W[k, s] = acc
+    # W = C V with the known zeros of C skipped (C is zero outside its 4 x 4 block and the
+    # three cross terms above); the sums keep the order of the full product, so the result
+    # is the same to the last bit
+    for s in range(6):
+        for k in range(4):
+            W[k, s] = C[k, 0] * V[0, s] + C[k, 1] * V[1, s] + C[k, 2] * V[2, s] + C[k, 3] * V[3, s]
+        W[4, s] = FD * V[6, s]
+        W[5, s] = FD * V[7, s]
+        W[6, s] = FD * V[4, s] + FY * V[7, s]
+        W[7, s] = FD * V[5, s] + FY * V[6, s]
     for p in range(6):
         for s in range(p + 1):
             acc = FX * hess_x[p, s] + FY * hess_dot[p, s]

@@ -1,0 +1,112 @@
+"""The envelope-limited banded Cholesky (``banded.factor``, ``banded.solve_factored``) against
+the full-band elimination it replaces (dpbtf2's loops over every entry of the band): the same
+numbers bit for bit on bands made wide by long merged z groups, which is what keeps the
+solver's iterates (and every certified result) unchanged."""
+import math
+
+import numpy as np
+import pytest
+from numba import njit
+from scipy.linalg.lapack import dpbtrf
+
+from stitchswitch import DEFAULT_MATERIAL, Patch
+from stitchswitch.reduced.model.discretization import make_grid
+from stitchswitch.reduced.model.terms import ALL_TERMS
+from stitchswitch.reduced.model.terms.segment import BANDWIDTH
+from stitchswitch.reduced.solvers import banded, continuation, fused, newton_loop, step
+
+
+@njit(fastmath=banded.CONTRACT)
+def _full_band_factor(ab, shift):
+    """dpbtf2's right-looking elimination over the whole band width (the previous loops,
+    compiled with the same floating-point contraction)."""
+    kd, n = ab.shape[0] - 1, ab.shape[1]
+    L = ab.copy()
+    for j in range(n):
+        L[0, j] += shift
+    for j in range(n):
+        if not L[0, j] > 0.0:
+            return L, j + 1
+        ajj = math.sqrt(L[0, j])
+        L[0, j] = ajj
+        kn = min(kd, n - 1 - j)
+        inv = 1.0 / ajj
+        for p in range(1, kn + 1):
+            L[p, j] *= inv
+        for q in range(1, kn + 1):
+            t = -L[q, j]
+            for p in range(q, kn + 1):
+                L[p - q, j + q] += L[p, j] * t
+    return L, 0
+
+
+def _merged_band(rng, n_nodes):
+    """A restricted Hessian with long held runs of drops (wide band, few long columns)."""
+    hb = rng.standard_normal((BANDWIDTH + 1, 2 * n_nodes))
+    hb[0] = np.abs(hb[0]) + 4.0 * (BANDWIDTH + 1)
+    free = np.ones(n_nodes - 1, dtype=bool)
+    free[0] = False
+    free[5:25] = False                  # a run of 20 held drops
+    free[40:44] = False
+    dof_map, n_red = step.reduced_indices(n_nodes, free)
+    return banded.restrict(hb, dof_map, n_red)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_factor_is_the_full_band_elimination_bit_for_bit_on_wide_bands(seed):
+    rng = np.random.default_rng(seed)
+    ab = _merged_band(rng, 60)
+    assert ab.shape[0] - 1 > 20                              # the band is wide
+    ends = banded.envelope(ab)
+    assert np.sum(ends) < 0.5 * ab.shape[1] * (ab.shape[0] - 1)  # most columns are short
+    shift = float(rng.uniform(0.0, 1.0))
+    L, info = banded.factor(ab, shift)
+    L_ref, info_ref = _full_band_factor(ab, shift)
+    assert info == info_ref == 0
+    assert np.array_equal(L, L_ref)
+    shifted = ab.copy()
+    shifted[0] += shift
+    np.testing.assert_allclose(L, dpbtrf(shifted, lower=1)[0], rtol=1e-12, atol=1e-13)
+    for j, e in enumerate(ends):                             # zero below the envelope
+        assert not np.any(L_ref[e + 1:, j])
+    b = rng.standard_normal(ab.shape[1])
+    x = banded.solve_factored(L, b)
+    dense = np.zeros((ab.shape[1],) * 2)
+    for k in range(ab.shape[0]):
+        for j in range(ab.shape[1] - k):
+            dense[j + k, j] = dense[j, j + k] = ab[k, j]
+    np.testing.assert_allclose((dense + shift * np.eye(len(b))) @ x, b, rtol=0, atol=1e-10)
+
+
+def test_an_indefinite_wide_band_fails_where_the_full_elimination_does():
+    ab = _merged_band(np.random.default_rng(7), 60)
+    ab[0, 30] = -1e3
+    assert banded.factor(ab, 0.0)[1] == _full_band_factor(ab, 0.0)[1] > 0
+
+
+@pytest.mark.parametrize("design", [(55.0, 1.0), (70.0, 0.8)])
+def test_factor_and_solve_equal_the_full_band_ones_on_solver_states(design):
+    """Real restricted Hessians along a solve, including iterations with flat stretches."""
+    grid = make_grid(Patch(*design), DEFAULT_MATERIAL)
+    coef = fused.coefficients(ALL_TERMS, grid)
+    r0, z0 = continuation.released_state(grid)
+    n = r0.size
+    widest = 0
+    for k in range(0, 16, 3):
+        r, z = newton_loop.fused_iterate(r0.copy(), z0.copy(), coef, 0.0, k, 0, 0.0)[:2]
+        grad, hb = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
+        fused.derivatives(r, z, coef, grad, hb, True)
+        free = step.stationarity(grad, np.maximum(z[:-1] - z[1:], 0.0))[1]
+        dof_map, n_red = step.reduced_indices(n, free)
+        ab = banded.restrict(hb, dof_map, n_red)
+        widest = max(widest, ab.shape[0] - 1)
+        shift = 1e-3 * np.abs(ab[0]).mean()
+        L, info = banded.factor(ab, shift)
+        L_ref, info_ref = _full_band_factor(ab, shift)
+        assert info == info_ref
+        if info == 0:
+            assert np.array_equal(L, L_ref)
+            rhs = -grad[dof_map >= 0][:n_red] if n_red else np.zeros(0)
+            x = banded.solve_factored(L, rhs)
+            assert np.all(np.isfinite(x))
+    assert widest > 20
