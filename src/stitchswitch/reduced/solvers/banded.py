@@ -83,32 +83,33 @@ def envelope(ab):
 @njit(cache=True, fastmath=CONTRACT)
 def factor(ab, shift):
     """Lower banded Cholesky factor of ab + shift I (lower band storage, ``ab[k, j] =
-    A[j + k, j]``) and LAPACK's info: 0 on success, j + 1 if the leading minor of order j + 1
-    is not positive definite (then the factor is incomplete).
+    A[j + k, j]``; returned as the transpose of a C-ordered (n, kd + 1) array, so each column
+    of the band is contiguous) and LAPACK's info: 0 on success, j + 1 if the leading minor of
+    order j + 1 is not positive definite (then the factor is incomplete).
 
     Each column is eliminated only down to its ``envelope``: below it the factor is exactly
     zero, so the operations skipped would add zeros (the factor is dpbtf2's bit for bit, at a
     cost that grows with the long columns only, not with the band's widest column)."""
     n = ab.shape[1]
-    ends = envelope(ab)
-    L = ab.copy()
+    Lt = np.ascontiguousarray(ab.T)        # column j of the band is row j: contiguous loops
     for j in range(n):
-        L[0, j] += shift
+        Lt[j, 0] += shift
+    ends = envelope(Lt.T)
     for j in range(n):
-        ajj = L[0, j]
+        ajj = Lt[j, 0]
         if not ajj > 0.0:                  # also catches NaN, as dpbtf2 does
-            return L, j + 1
+            return Lt.T, j + 1
         ajj = math.sqrt(ajj)
-        L[0, j] = ajj
+        Lt[j, 0] = ajj
         kn = ends[j]
         inv = 1.0 / ajj
         for p in range(1, kn + 1):
-            L[p, j] *= inv
+            Lt[j, p] *= inv
         for q in range(1, kn + 1):         # rank-1 update of the trailing block (dsyr)
-            t = -L[q, j]
+            t = -Lt[j, q]
             for p in range(q, kn + 1):
-                L[p - q, j + q] += L[p, j] * t
-    return L, 0
+                Lt[j + q, p - q] += Lt[j, p] * t
+    return Lt.T, 0
 
 
 @njit(cache=True, fastmath=CONTRACT)
