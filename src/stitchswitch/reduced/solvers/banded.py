@@ -7,7 +7,10 @@ the factorization itself costs microseconds and a call through Python cost more 
 compiled, the Newton loop (``newton_loop``) calls it without leaving numba. It is ``dpbtf2``'s
 algorithm (the unblocked right-looking Cholesky LAPACK uses for narrow bands) and reports
 failure the same way: info = j + 1 when the leading minor of order j + 1 is not positive
-definite (tests/test_banded.py compares it with scipy's LAPACK)."""
+definite (tests/test_banded.py compares it with scipy's LAPACK). A long merged z group makes
+the band wide but only the group's columns long; the factorization and the solve stop each
+column at its ``envelope``, which skips only updates by exact zeros (tests/test_banded_envelope.py:
+the full-band loops' factor, bit for bit)."""
 from __future__ import annotations
 
 import math
