@@ -1,8 +1,8 @@
 """Examples as tests: every ``console`` block of docs/guide.md runs, top to bottom, in one fresh
-folder, as a user would type it, and so does every README.md block that shows output. A ``$`` line is a command (``>`` lines continue it); the lines
-after it are its expected output, each of which must appear in the real output in order (times
-such as ``0.03 s`` are masked; ``...`` skips lines). Commands must exit 0 unless the line ends in
-``# exit N``."""
+folder, as a user would type it, and so does every README.md block that shows output. A ``$``
+line is a command (``>`` lines continue it); the lines after it are its expected output, each of
+which must appear in the real output in order (times such as ``0.03 s`` are masked; ``...``
+skips lines). Commands must exit 0 unless the line ends in ``# exit N``."""
 import re
 import subprocess
 import sys
