@@ -7,8 +7,8 @@ import pathlib
 import click
 
 from stitchswitch.cli import options
+from stitchswitch.cli.reference.shell_options import shell_options
 from stitchswitch.fem_reference.check import DEFAULT_DESIGNS, fem_check, table
-from stitchswitch.fem_reference.continuation import DEFAULT_START, STARTS
 from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
@@ -31,13 +31,7 @@ def _designs(text: str | None):
 @click.option("--designs", default=None, metavar="D,P;D,P",
               help="Designs to check (default: d 25, 50, 90 mm x p 0.6, 0.8, 1.0).")
 @options.material_opt
-@click.option("--hoop-bending", is_flag=True, help="Hoop bending in the reference only (the "
-              "reduced model has none): measures what the reduced model leaves out.")
-@click.option("--poisson", type=options.FINITE_FLOAT, default=0.0, show_default=True,
-              help="Poisson coupling of the reference's bending (with --hoop-bending).")
-@click.option("--start", type=click.Choice(STARTS), default=DEFAULT_START, show_default=True,
-              help="Start of the reference's Newton solve: the reduced model's equilibrium, or "
-              "the prestretch continuation from the flat sheet (independent of the reduced model).")
+@shell_options
 @click.option("--report", type=click.Path(file_okay=False, path_type=pathlib.Path), default=None,
               metavar="DIR", help="Also write report.md and report.json into DIR.")
 @options.json_opt

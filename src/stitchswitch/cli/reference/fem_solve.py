@@ -8,7 +8,7 @@ import click
 
 from stitchswitch.cli import options
 from stitchswitch.cli.output import key_value_table
-from stitchswitch.fem_reference.continuation import DEFAULT_START, STARTS
+from stitchswitch.cli.reference.shell_options import shell_options
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 
@@ -19,11 +19,7 @@ from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 @options.material_opt
 @click.option("--elements", type=click.IntRange(min=4, max=640), default=80, show_default=True,
               help="Hermite elements on the patch.")
-@click.option("--hoop-bending", is_flag=True, help="Add hoop (parallel) bending.")
-@click.option("--poisson", type=options.FINITE_FLOAT, default=0.0, show_default=True)
-@click.option("--start", type=click.Choice(STARTS), default=DEFAULT_START, show_default=True,
-              help="Start of the Newton solve: the reduced model's equilibrium, or the prestretch "
-              "continuation from the flat sheet (independent of the reduced model).")
+@shell_options
 @click.option("--mesh", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
               metavar="FILE", help="Write the surface of revolution (.vtu, .ply, .obj, ...).")
 @options.json_opt
