@@ -17,10 +17,9 @@ import argparse
 import numpy as np
 
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
+from stitchswitch.reduced.calibration.designs import CALIBRATION_DESIGNS
 from stitchswitch.reduced.model.terms import ALL_TERMS, compression
 
-FILLS = (0.6, 0.7, 0.8, 0.9, 1.0)
-DIAMETERS_MM = (20.0, 40.0, 60.0, 70.0, 90.0)
 KEYS = ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm")
 C_EMB = 0.01      # the default material's compression_ratio, as the stitched mats' stiffness ratio
 
@@ -39,7 +38,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer designs (a smoke run)")
     args = ap.parse_args()
-    designs = [(d, p) for p in FILLS for d in DIAMETERS_MM]
+    designs = list(CALIBRATION_DESIGNS)
     shown = [(20.0, 0.6), (40.0, 0.8), (90.0, 0.6), (70.0, 1.0)]
     if args.quick:
         designs = shown

@@ -13,11 +13,10 @@ from __future__ import annotations
 import numpy as np
 
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
+from stitchswitch.reduced.calibration.designs import CALIBRATION_DESIGNS
 from stitchswitch.reduced.design_space.cache import default_map
 from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.model.terms.hardening import CUTOFF, h
-
-DESIGNS = [(d, p) for p in (0.6, 0.7, 0.8, 0.9, 1.0) for d in (20.0, 40.0, 60.0, 70.0, 90.0)]
 
 
 def main() -> None:
@@ -40,7 +39,7 @@ def main() -> None:
         print(f"designs with eps_theta / gamma above {limit:g}: {int(np.sum(ratio > limit))}")
 
     shares, moves = [], []
-    for d, p in DESIGNS:
+    for d, p in CALIBRATION_DESIGNS:
         sol = solve(Patch(d, p), DEFAULT_MATERIAL)
         grid = make_grid(Patch(d, p), DEFAULT_MATERIAL)
         eps = sol.r_mm[1:] / grid.dr_mm - grid.lam * np.arange(1, grid.n_nodes)

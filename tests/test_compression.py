@@ -5,13 +5,13 @@ import pytest
 
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.reduced.calibration.designs import CALIBRATION_DESIGNS
 from stitchswitch.reduced.model import assembly
 from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.model.terms import ALL_TERMS, compression
 
 from helpers import fd_gradient, fd_jacobian, pack, random_state
 
-CALIBRATION_DESIGNS = [(d, p) for p in (0.6, 0.7, 0.8, 0.9, 1.0) for d in (20.0, 40.0, 60.0, 70.0, 90.0)]
 KEYS = ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm")
 
 

@@ -49,14 +49,8 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.reduced.calibration.designs import CALIBRATION_DESIGNS
 from stitchswitch.reduced.model.params import Material, Patch
-
-#: The paper's 25 calibration designs: p in CALIBRATION_FILLS x d in CALIBRATION_DIAMETERS_MM,
-#: fill outermost (the order of scripts/make_measured_dataset.py; the same grid as
-#: validation.discovery.synthetic.TRAIN_*, which this layer may not import).
-CALIBRATION_FILLS = (0.6, 0.7, 0.8, 0.9, 1.0)
-CALIBRATION_DIAMETERS_MM = (20.0, 40.0, 60.0, 70.0, 90.0)
-CALIBRATION_DESIGNS = tuple((d, p) for p in CALIBRATION_FILLS for d in CALIBRATION_DIAMETERS_MM)
 
 #: Float fields of Material that set the discretization, not the physics.
 NUMERICAL = ("dr_max_mm", "domain_max_rb")

@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.reduced.calibration.designs import CALIBRATION_DIAMETERS_MM, CALIBRATION_FILLS
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material, Patch
 from stitchswitch.validation.discovery.effects import LIBRARY, resolve
 
@@ -38,8 +39,7 @@ TRUE_MATERIAL = DEFAULT_MATERIAL.replace(w_b_emb=14.0, w_b_fab=2.5, k_r_emb=1.6,
 START_MATERIAL = DEFAULT_MATERIAL.replace(w_log=0.0)
 #: Noise of the synthetic reference dataset (scripts/make_measured_dataset.py, SIGMA_MM).
 SIGMA_MM = (2.3, 1.7, 1.6, 1.8, 1.2)
-TRAIN_FILL = (0.6, 0.7, 0.8, 0.9, 1.0)
-TRAIN_D_MM = (20.0, 40.0, 60.0, 70.0, 90.0)
+TRAIN_FILL, TRAIN_D_MM = CALIBRATION_FILLS, CALIBRATION_DIAMETERS_MM     # the paper's training grid
 N_VAL = 28
 #: Hidden sources besides the library effects (None: no hidden effect).
 SOURCES = ("gravity_sag", "fem_shell")
