@@ -218,3 +218,22 @@ def test_turned_hoop_turns_the_stitches(tmp_path):
     # 0.1 mm; triangles are selected by centroid, so a 5 mm triangle may cross the line by 3 mm
     assert block == 1 and min(ys[1]) > -160 and max(ys[1]) < 35 and sum(ys[1]) / len(ys[1]) < -50
     assert max(ys[0]) > 100 and sum(ys[0]) / len(ys[0]) > 30
+
+
+def test_ids_are_escaped_in_the_sheet_and_control_characters_refused(tmp_path):
+    """An id that Markdown would interpret appears literally in fabrication.md (and unescaped
+    in the HTML page and the JSON); an id holding NUL or a line break is refused."""
+    from stitchswitch.layout.fabrication.sheet import md_escape
+
+    assert md_escape("a|b*c_<d>") == "a\\|b\\*c\\_\\<d\\>"
+    design = write_design(tmp_path / "design.json", [patch("p|*1*", 60, 60, 24, 0.8)])
+    out = tmp_path / "out"
+    assert run("fabricate", design, "-o", out).exit_code == 0
+    md = (out / "fabrication.md").read_text()
+    assert "p\\|\\*1\\*" in md and "p|*1*" not in md
+    assert "p|*1*" in (out / "fabrication.html").read_text()
+    for bad in ("p\x001", "p\n1"):
+        design = write_design(tmp_path / "bad.json", [patch(bad, 60, 60, 24, 0.8)])
+        r = run("fabricate", design, "-o", tmp_path / "none")
+        assert r.exit_code == 2 and "$.patches[0].id" in r.output
+        assert "control character" in r.output and not (tmp_path / "none").exists()

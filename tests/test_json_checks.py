@@ -199,3 +199,37 @@ def test_unique():
                                    "$.hoops[0] ('SQ14b'; case is ignored)")
     e = error(jc.unique, ["p1", "p1"], "$.patches", "id")
     assert e.message == "'p1' is already the id of $.patches[0]"
+
+
+@pytest.mark.parametrize("text, message", [
+    ('{"a": ' + "7" * 5000 + "}", "$.a: 777"),
+    ('{"a": [1, 1e999]}', "$.a[1]: 1e999 is too large (beyond the range of a float)"),
+    ("[" * 100_000 + "]" * 100_000, "nested deeper than 32 levels"),
+    ("[" * 40 + "]" * 40, "nested deeper than 32 levels"),
+])
+def test_loads_refuses_what_no_file_holds(text, message):
+    """Over-long integers, floats beyond range and deep nesting are one short message each,
+    never Python's ValueError or RecursionError."""
+    with pytest.raises(InvalidInputError) as info:
+        jc.loads(text, "f.json")
+    assert message in str(info.value) and str(info.value).startswith("f.json: ")
+    assert len(str(info.value)) < 200
+    assert jc.loads("[" * 31 + "]" * 31, "f") is not None          # 32 levels are allowed
+
+
+def test_number_beyond_the_float_range_and_long_values_are_shortened():
+    e = error(jc.number, 10 ** 400, "$.x")
+    assert e.message.endswith("... is too large") and len(e.message) < 80
+    e = error(jc.obj, {"k" * 10_000: 1, "b": 2}, "$", ("a",))
+    assert len(str(e)) < 300
+    e = error(jc.obj, {f"x{i}": 1 for i in range(50)}, "$", ("a",))
+    assert e.message.endswith("... (49 in all)")
+    assert jc.show_all(["a", "b"]) == "a, b" and jc.clip("abcdef", 5) == "ab..."
+
+
+def test_text_printable_refuses_control_characters():
+    assert jc.text("p-1 é", "$.id", printable=True) == "p-1 é"
+    for bad, code in (("p\x001", "U+0000 at character 2"), ("a\nb", "U+000A"), ("\x7f", "U+007F")):
+        e = error(jc.text, bad, "$.id", printable=True)
+        assert code in e.message and "control character" in e.message
+    assert jc.text("a\nb", "$.notes") == "a\nb"                    # only where asked

@@ -8,7 +8,9 @@ builds them). Every check takes the value and its path, returns the checked valu
 ``design file 'd.json': $.patches[2].diameter_mm: -3 is outside [5, 360] mm``.
 
 * ``loads(text, where)`` / ``load_file(path, where)``: parse, refusing what ``json.loads`` lets
-  through silently: a duplicate key (it keeps the last) and NaN or Infinity (not JSON);
+  through silently: a duplicate key (it keeps the last) and NaN or Infinity (not JSON), and what
+  no file of the package holds: nesting deeper than ``MAX_DEPTH`` levels, an integer of more
+  than ``MAX_INT_DIGITS`` digits;
 * ``obj`` (an object with its required and optional keys: unknown keys are refused, with a
   did-you-mean), ``array``, ``items`` (an array checked item by item), ``text``, ``number`` and
   ``integer`` (finite, with an optional range and unit), ``choice`` (one of a fixed set),
@@ -17,23 +19,33 @@ builds them). Every check takes the value and its path, returns the checked valu
   path).
 
 Values appear in messages as written in the file (``true``, ``null``, ``[1, 2]``) except
-strings, which are quoted as in every other message of the package (``'abc'``).
+strings, which are quoted as in every other message of the package (``'abc'``), and never in
+full: ``show`` shortens one to about 60 characters, ``show_all`` lists a few, ``clip`` shortens
+any text (a long JSON path too). Every message of the package that repeats an input value
+uses them.
 """
 from __future__ import annotations
 
 import difflib
 import json
 import math
+import unicodedata
 from contextlib import contextmanager
 from typing import NoReturn
 
 from stitchswitch.errors import InvalidInputError
 
-__all__ = ["ROOT", "JsonError", "child", "show", "kind", "reporting", "at", "fail", "loads",
+__all__ = ["ROOT", "MAX_DEPTH", "MAX_INT_DIGITS", "JsonError", "child", "clip", "show",
+           "show_all", "kind", "reporting", "at", "fail", "loads",
            "load_file", "obj", "array", "items", "text", "number", "integer", "choice", "unique"]
 
 ROOT = "$"
 _SHOW_MAX = 60
+_PATH_MAX = 100
+#: Limits of a parsed document: no file the package reads nests more than a few levels or
+#: holds an integer of more than a few digits.
+MAX_DEPTH = 32
+MAX_INT_DIGITS = 400
 
 
 class JsonError(Exception):
@@ -41,7 +53,7 @@ class JsonError(Exception):
 
     def __init__(self, path: str, message: str):
         self.path, self.message = path, message
-        super().__init__(f"{path}: {message}")
+        super().__init__(f"{clip(path, _PATH_MAX)}: {message}")
 
 
 def child(path: str, key) -> str:
@@ -50,6 +62,19 @@ def child(path: str, key) -> str:
         return f"{path}[{key}]"
     key = str(key)
     return f"{path}.{key}" if key.isidentifier() else f"{path}[{json.dumps(key)}]"
+
+
+def clip(text: str, most: int = 60) -> str:
+    """``text`` shortened to ``most`` characters (ending in "..." when cut)."""
+    return text if len(text) <= most else text[:most - 3] + "..."
+
+
+def show_all(values, most: int = 5, *, quoted: bool = False) -> str:
+    """``values`` as messages list them, at most ``most``, each shortened: names unquoted,
+    or ``show`` of each if ``quoted``."""
+    values = list(values)
+    out = ", ".join(show(v) if quoted else clip(str(v)) for v in values[:most])
+    return out + (f", ... ({len(values)} in all)" if len(values) > most else "")
 
 
 def show(value) -> str:
@@ -63,7 +88,7 @@ def show(value) -> str:
             out = json.dumps(value, ensure_ascii=False)
         except (TypeError, ValueError):
             out = repr(value)
-    return out if len(out) <= _SHOW_MAX else out[:_SHOW_MAX - 3] + "..."
+    return clip(out, _SHOW_MAX)
 
 
 def kind(value) -> str:
@@ -114,11 +139,32 @@ class _Duplicated(dict):
     duplicates: list
 
 
-class _Constant:
-    """NaN, Infinity or -Infinity in the text: Python's parser takes them, JSON has none."""
+class _Refused:
+    """A value the text spells but no loader can take, kept as a marker until its path is
+    known: NaN, Infinity or -Infinity (Python's parser takes them, JSON has none) or an integer
+    of more than ``MAX_INT_DIGITS`` digits (no field holds one; Python refuses to convert
+    over 4,300)."""
 
-    def __init__(self, name: str):
-        self.name = name
+    def __init__(self, message: str):
+        self.message = message
+
+
+def _constant(name: str) -> _Refused:
+    return _Refused(f"{name} is not a finite number (JSON has no NaN or Infinity)")
+
+
+def _integer(digits: str):
+    n = len(digits.lstrip("-"))
+    if n > MAX_INT_DIGITS:
+        return _Refused(f"{clip(digits)} is too large (an integer of {n} digits)")
+    return int(digits)
+
+
+def _float(spelled: str):
+    value = float(spelled)
+    if not math.isfinite(value):
+        return _Refused(f"{clip(spelled)} is too large (beyond the range of a float)")
+    return value
 
 
 def _pairs(pairs):
@@ -134,27 +180,38 @@ def _pairs(pairs):
 
 
 def _refuse_extensions(value, path: str) -> None:
-    if isinstance(value, _Constant):
-        fail(path, f"{value.name} is not a finite number (JSON has no NaN or Infinity)")
-    if isinstance(value, dict):
-        if isinstance(value, _Duplicated):
-            fail(child(path, value.duplicates[0]), "duplicate key (a key may appear only once "
-                 "in an object)")
-        for key, item in value.items():
-            _refuse_extensions(item, child(path, key))
-    elif isinstance(value, list):
-        for i, item in enumerate(value):
-            _refuse_extensions(item, child(path, i))
+    """Walk the parsed document (without recursion) for duplicates, refused values and
+    nesting deeper than ``MAX_DEPTH``."""
+    stack = [(value, path, 0)]
+    while stack:
+        value, path, depth = stack.pop()
+        if isinstance(value, _Refused):
+            fail(path, value.message)
+        if isinstance(value, (dict, list)) and depth >= MAX_DEPTH:
+            fail(path, f"nested deeper than {MAX_DEPTH} levels")
+        if isinstance(value, dict):
+            if isinstance(value, _Duplicated):
+                fail(child(path, value.duplicates[0]), "duplicate key (a key may appear only "
+                     "once in an object)")
+            stack.extend((item, child(path, key), depth + 1)
+                         for key, item in reversed(value.items()))
+        elif isinstance(value, list):
+            stack.extend((item, child(path, i), depth + 1)
+                         for i, item in reversed(list(enumerate(value))))
 
 
 def loads(text: str, where: str):
     """The parsed JSON ``text``; invalid JSON, a duplicate key or NaN/Infinity raise
     ``InvalidInputError`` starting with ``where`` (the duplicate and the constant by path)."""
     try:
-        value = json.loads(text, object_pairs_hook=_pairs, parse_constant=_Constant)
+        value = json.loads(text, object_pairs_hook=_pairs, parse_constant=_constant,
+                           parse_int=_integer, parse_float=_float)
     except json.JSONDecodeError as exc:
         raise InvalidInputError(f"{where}: not valid JSON ({exc.msg} at line {exc.lineno}, "
                                 f"column {exc.colno})") from None
+    except RecursionError:
+        raise InvalidInputError(f"{where}: not valid JSON (nested deeper than "
+                                f"{MAX_DEPTH} levels)") from None
     with reporting(where):
         _refuse_extensions(value, ROOT)
     return value
@@ -182,11 +239,11 @@ def obj(value, path: str, required=(), optional=(), *, what: str | None = None) 
     if unknown:
         message = "unknown key (allowed: " + ", ".join(allowed) + ")"
         absent = [k for k in allowed if k not in value]
-        guess = difflib.get_close_matches(unknown[0], absent, n=1, cutoff=0.75)
+        guess = difflib.get_close_matches(unknown[0][:100], absent, n=1, cutoff=0.75)
         if guess:
             message += f"; did you mean {guess[0]!r}?"
         if len(unknown) > 1:
-            message += "; also unknown: " + ", ".join(map(repr, unknown[1:]))
+            message += "; also unknown: " + show_all(unknown[1:], 3, quoted=True)
         fail(child(path, unknown[0]), message)
     missing = [k for k in required if k not in value]
     if missing:
@@ -213,12 +270,18 @@ def items(value, path: str, check, *, nonempty: bool = False) -> list:
 
 # --- scalars -------------------------------------------------------------------------------
 
-def text(value, path: str, *, nonempty: bool = False) -> str:
-    """``value``, a string (not blank if ``nonempty``)."""
+def text(value, path: str, *, nonempty: bool = False, printable: bool = False) -> str:
+    """``value``, a string (not blank if ``nonempty``; without control characters such as NUL
+    or a line break if ``printable``, for names that end up in file names and in tables)."""
     if not isinstance(value, str):
         fail(path, f"must be a string, {_got(value)}")
     if nonempty and not value.strip():
         fail(path, "must not be empty")
+    if printable:
+        bad = next((i for i, c in enumerate(value) if unicodedata.category(c) == "Cc"), None)
+        if bad is not None:
+            fail(path, f"{show(value)} contains a control character (U+{ord(value[bad]):04X} "
+                       f"at character {bad + 1})")
     return value
 
 
@@ -247,7 +310,11 @@ def _numeric(value, path, noun, low, high, low_open, high_open, unit, note, null
     if isinstance(value, bool) or not is_type:
         fail(path, f"{show(value)} is not {article} {noun}{wanted}" + (" or null" if nullable
                                                                           else ""))
-    if not math.isfinite(value):
+    try:
+        finite = math.isfinite(value)
+    except OverflowError:                       # an integer beyond the float range
+        fail(path, f"{show(value)} is too large")
+    if not finite:
         fail(path, f"{show(value)} is not a finite number")
     below = low is not None and (value <= low if low_open else value < low)
     above = high is not None and (value >= high if high_open else value > high)

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.json_checks import show
 from stitchswitch.files.textio import csv_number, csv_records, read_text
 from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM
 
@@ -129,10 +130,10 @@ def _header(cells: list[str], where: str) -> list[str]:
     for k, c in enumerate(cells, start=1):
         if c not in allowed:
             raise InvalidInputError(
-                f"{where}, column {k}: unknown column {c!r} (required: {', '.join(REQUIRED_COLUMNS)}; "
+                f"{where}, column {k}: unknown column {show(c)} (required: {', '.join(REQUIRED_COLUMNS)}; "
                 f"optional: {', '.join(OPTIONAL_COLUMNS)})")
         if c in cells[:k - 1]:
-            raise InvalidInputError(f"{where}, column {k}: column {c!r} appears twice in the header "
+            raise InvalidInputError(f"{where}, column {k}: column {show(c)} appears twice in the header "
                                     f"(also column {cells.index(c) + 1})")
     missing = [c for c in REQUIRED_COLUMNS if c not in cells]
     if missing:
@@ -156,7 +157,7 @@ def _row(cells: list[str], header: list[str], where: str, lineno: int) -> Measur
         _check_range(value, where, c)
         values[_FIELD_OF_COLUMN.get(c, c)] = value
     if f["split"] not in SPLITS:
-        raise InvalidInputError(f"{where}, column split: {f['split']!r} is not train or val")
+        raise InvalidInputError(f"{where}, column split: {show(f['split'])} is not train or val")
     force = None
     if f.get("force_N", "") != "":
         force = csv_number(f["force_N"], where, "force_N")
@@ -180,7 +181,7 @@ def parse_measurements(text: str, name: str = "<text>") -> MeasuredData:
         row = _row(cells, header, where, lineno)
         if row.sample_id:
             if row.sample_id in seen:
-                raise InvalidInputError(f"{where}, column sample_id: {row.sample_id!r} is also the "
+                raise InvalidInputError(f"{where}, column sample_id: {show(row.sample_id)} is also the "
                                         f"sample id on line {seen[row.sample_id]}")
             seen[row.sample_id] = lineno
         rows.append(row)

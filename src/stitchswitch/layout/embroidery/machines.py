@@ -57,8 +57,8 @@ class Machine:
         for h in self.hoops:
             if h.name.lower() == str(name).lower():
                 return h
-        raise InvalidInputError(f"{name!r} is not a hoop of the {self.name} (hoops: "
-                                + ", ".join(h.name for h in self.hoops) + ")")
+        raise InvalidInputError(f"{jc.show(name)} is not a hoop of the {self.name} (hoops: "
+                                + jc.show_all(h.name for h in self.hoops) + ")")
 
     def largest_hoop(self) -> Hoop:
         """The hoop with the largest sewing field (by area; the first of equal ones)."""
@@ -96,8 +96,8 @@ class Catalogue:
         for m in self.machines:
             if m.name.lower() == str(name).lower():
                 return m
-        raise InvalidInputError(f"unknown machine {name!r} (machines: "
-                                + ", ".join(self.names()) + ")")
+        raise InvalidInputError(f"unknown machine {jc.show(name)} (machines: "
+                                + jc.show_all(self.names()) + ")")
 
     def with_machines(self, extra) -> "Catalogue":
         """This catalogue with ``extra`` machines added; a name already present is replaced."""

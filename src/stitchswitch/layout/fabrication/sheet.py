@@ -24,10 +24,10 @@ def _pt(p, digits: int = 1) -> str:
     return f"({_f(p[0], digits)}, {_f(p[1], digits)})"
 
 
-def summary_rows(doc: FabricationDoc) -> list[tuple[str, str]]:
+def summary_rows(doc: FabricationDoc, esc=str) -> list[tuple[str, str]]:
     g, m = doc.grouping, doc.machine
     gap = "n/a" if g.mip_gap is None else f"{100 * g.mip_gap:.2f} %"
-    rows = [("design", doc.design.file),
+    rows = [("design", esc(doc.design.file)),
             ("machine", f"{m.label} ({m.name}, {m.source})"),
             ("mode", doc.mode), ("format", doc.embroidery_format),
             ("hoopings", str(len(doc.hoopings))),
@@ -44,37 +44,48 @@ def summary_rows(doc: FabricationDoc) -> list[tuple[str, str]]:
     return rows
 
 
-def _thread_text(t: Thread) -> str:
+_MARKDOWN_SPECIAL = set("\\`*_[]<>#!|~&")
+
+
+def md_escape(text: str) -> str:
+    """``text`` (an id or a name from the user's files) as literal Markdown: every character
+    that Markdown or a table would interpret is backslash-escaped."""
+    return "".join("\\" + c if c in _MARKDOWN_SPECIAL else c for c in str(text))
+
+
+def _thread_text(t: Thread, esc=str) -> str:
+    patches = ", ".join(map(esc, t.patches))
     if t.role == "conductive":
         return (f"conductive {t.colour} (conductive thread in the bobbin for this block: "
-                f"change the bobbin at the colour change) for {', '.join(t.patches)}")
-    return f"top {t.colour} for {', '.join(t.patches)}"
+                f"change the bobbin at the colour change) for {patches}")
+    return f"top {t.colour} for {patches}"
 
 
-def _hooping_lines(h: HoopingDoc, mode: str) -> list[str]:
+def _hooping_lines(h: HoopingDoc, mode: str, esc=str) -> list[str]:
     turn = "turned 90 degrees" if h.orientation_deg == 90 else "normal position"
     lines = [f"- hoop **{h.hoop}** ({h.field_mm[0]:g} x {h.field_mm[1]:g} mm field, {turn})"]
     if mode == "garment":
-        lines.append(f"- piece `{h.piece}`; field centre at {_pt(h.centre_garment_mm)} mm "
+        piece = f"`{h.piece}`" if esc is str else esc(h.piece)
+        lines.append(f"- piece {piece}; field centre at {_pt(h.centre_garment_mm)} mm "
                      f"on the relaxed piece, {_pt(h.centre_stretched_mm)} mm stretched")
         marks = ", ".join(f"{n} {_pt(p)}" for n, p in zip(
             ("centre", "right", "top", "left", "bottom"), h.alignment_marks_garment_mm))
         lines.append(f"- alignment marks on the relaxed piece (mm), by hoop side: {marks}")
     lines.append(f"- file `{h.files.embroidery}`; layout `{h.files.png}`, `{h.files.svg}`")
-    lines += [f"- thread: {_thread_text(t)}" for t in h.threads]
+    lines += [f"- thread: {_thread_text(t, esc)}" for t in h.threads]
     lines.append(f"- {h.stitches} stitches, {h.trims} trims, {h.colour_changes} colour "
                  f"change(s), {h.thread_length_m:.2f} m of top thread, about "
                  f"{_f(h.time_min)} min")
     return lines
 
 
-def _patch_table(h: HoopingDoc, mode: str) -> tuple[list[str], list[list[str]]]:
+def _patch_table(h: HoopingDoc, mode: str, esc=str) -> tuple[list[str], list[list[str]]]:
     head = ["#", "patch", "d (mm)", "fill", "hoop position (mm)"]
     if mode == "garment":
         head.append("garment centre (mm)")
     else:
         head.append("sew onto garment at (mm)")
-    rows = [[str(p.order), p.id, f"{p.diameter_mm:g}", f"{p.fill:g}", _pt(p.position_hoop_mm),
+    rows = [[str(p.order), esc(p.id), f"{p.diameter_mm:g}", f"{p.fill:g}", _pt(p.position_hoop_mm),
              _pt(p.centre_garment_mm)] for p in h.patches]
     return head, rows
 
@@ -82,33 +93,34 @@ def _patch_table(h: HoopingDoc, mode: str) -> tuple[list[str], list[list[str]]]:
 ORDER_HEAD = ("#", "hoop", "turn", "patches", "stitches", "time (min)", "file")
 
 
-def _order_row(h: HoopingDoc) -> tuple[str, ...]:
-    return (str(h.number), h.hoop, f"{h.orientation_deg} deg", ", ".join(p.id for p in h.patches),
+def _order_row(h: HoopingDoc, esc=str) -> tuple[str, ...]:
+    return (str(h.number), h.hoop, f"{h.orientation_deg} deg", ", ".join(esc(p.id) for p in h.patches),
             str(h.stitches), _f(h.time_min), h.files.embroidery)
 
 
 def markdown(doc: FabricationDoc) -> str:
-    out = [f"# Fabrication sheet: {doc.design.file}", ""]
-    out += ["| | |", "|---|---|"] + [f"| {k} | {v} |" for k, v in summary_rows(doc)] + [""]
+    esc = md_escape
+    out = [f"# Fabrication sheet: {esc(doc.design.file)}", ""]
+    out += ["| | |", "|---|---|"] + [f"| {k} | {v} |" for k, v in summary_rows(doc, esc)] + [""]
     out += ["## Stretching and marking", ""]
     out += [f"{i}. {s}" for i, s in enumerate(doc.stretch.instructions, start=1)] + [""]
     out += ["## Hoopings in stitching order", ""]
     out += ["| " + " | ".join(ORDER_HEAD) + " |", "|" + "---|" * len(ORDER_HEAD)]
-    out += ["| " + " | ".join(_order_row(h)) + " |" for h in doc.hoopings]
+    out += ["| " + " | ".join(_order_row(h, esc)) + " |" for h in doc.hoopings]
     out.append("")
     for h in doc.hoopings:
-        out += [f"### Hooping {h.number}", ""] + _hooping_lines(h, doc.mode) + [""]
-        head, rows = _patch_table(h, doc.mode)
+        out += [f"### Hooping {h.number}", ""] + _hooping_lines(h, doc.mode, esc) + [""]
+        head, rows = _patch_table(h, doc.mode, esc)
         out += ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
         out += ["| " + " | ".join(r) + " |" for r in rows]
         out += ["", f"![hooping {h.number}]({h.files.png})", ""]
     out += ["## Frame conflicts", ""]
-    out += _conflict_lines(doc) + [""]
+    out += _conflict_lines(doc, esc) + [""]
     out += ["## Limits", ""] + [f"- {s}" for s in doc.limits] + [""]
     return "\n".join(out)
 
 
-def _conflict_lines(doc: FabricationDoc) -> list[str]:
+def _conflict_lines(doc: FabricationDoc, esc=str) -> list[str]:
     conf = doc.conflicts
     if doc.mode == "free":
         return ["None: every hooping is its own piece of fabric."]
@@ -118,7 +130,7 @@ def _conflict_lines(doc: FabricationDoc) -> list[str]:
            "minimised heuristically (too many hoopings for the exact search)")
     lines = [f"{len(conf)} place(s) where a frame lands on a patch stitched earlier; this is "
              f"{how}. Pad these patches (or hoop gently) when setting up the hooping:", ""]
-    lines += [f"- hooping {c.hooping}: the frame lands on patch {c.patch} (stitched in "
+    lines += [f"- hooping {c.hooping}: the frame lands on patch {esc(c.patch)} (stitched in "
               f"hooping {c.stitched_in_hooping})" for c in conf]
     return lines
 

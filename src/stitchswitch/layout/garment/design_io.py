@@ -95,7 +95,7 @@ def _design(obj, path) -> Design:
 
 def _piece(obj, path) -> PieceSpec:
     jc.obj(obj, path, required=("name", "outline_mm"), optional=("size", "source"))
-    name = jc.text(obj["name"], child(path, "name"), nonempty=True)
+    name = jc.text(obj["name"], child(path, "name"), nonempty=True, printable=True)
     size = jc.text(obj.get("size", ""), child(path, "size"))
     source = jc.text(obj.get("source", ""), child(path, "source"))
     outline_path = child(path, "outline_mm")
@@ -114,11 +114,11 @@ def _patch(obj, path, pieces: dict) -> PatchSpec:
 
     jc.obj(obj, path, required=("id", "piece", "centre_mm", "diameter_mm", "fill"),
            optional=("composite", "outline_mm", "conductive", "threads", "state"))
-    pid = jc.text(obj["id"], child(path, "id"), nonempty=True)
+    pid = jc.text(obj["id"], child(path, "id"), nonempty=True, printable=True)
     piece = jc.text(obj["piece"], child(path, "piece"), nonempty=True)
     if piece not in pieces:
-        jc.fail(child(path, "piece"), f"{piece!r} is not a piece of this design (pieces: "
-                                      + (", ".join(pieces) or "none") + ")")
+        jc.fail(child(path, "piece"), f"{jc.show(piece)} is not a piece of this design "
+                                      f"(pieces: {jc.show_all(pieces) or 'none'})")
     centre = _point(obj["centre_mm"], child(path, "centre_mm"))
     lo, hi = DIAMETER_RANGE_MM
     d = jc.number(obj["diameter_mm"], child(path, "diameter_mm"), low=lo, high=hi, unit="mm")
@@ -186,7 +186,7 @@ def _colour(value, path) -> str:
     text = jc.text(value, path)
     ok = len(text) == 7 and text[0] == "#" and all(c in "0123456789abcdefABCDEF" for c in text[1:])
     if not ok:
-        jc.fail(path, f"{value!r} is not a colour #rrggbb")
+        jc.fail(path, f"{jc.show(value)} is not a colour #rrggbb")
     return text.lower()
 
 
@@ -199,7 +199,7 @@ def _material(obj, path) -> MaterialRef:
                                                    nonempty=True))
     name = jc.text(obj["name"], child(path, "name"), nonempty=True)
     if name != "default":
-        jc.fail(child(path, "name"), f"{name!r} is not a built-in material (the built-in "
+        jc.fail(child(path, "name"), f"{jc.show(name)} is not a built-in material (the built-in "
                                      "material is 'default'; use 'file' for your own)")
     return MaterialRef(name=name, file=None)
 
