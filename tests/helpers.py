@@ -49,3 +49,25 @@ def fd_jacobian(f, x, h=1e-6):
         e[k] = h
         cols.append((f(x + e) - f(x - e)) / (2 * h))
     return np.array(cols).T
+
+
+def synthetic_map(nd=4, npp=3, nodes=30):
+    """A small ``DesignMap`` of made-up smooth tables (no solve), for the map file's loader:
+    the default material, diameters 40, 41, ... mm and fills 0.7, 0.75, ..."""
+    from stitchswitch.reduced.design_space.design_map import DesignMap
+    from stitchswitch.reduced.model.material_io import material_hash
+    from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
+
+    d, p = 40.0 + np.arange(nd), 0.7 + 0.05 * np.arange(npp)
+    dd, pp = np.meshgrid(d, p, indexing="ij")
+    tables = {name: (k + 1.0) * (0.1 * dd + pp) for k, name in enumerate(
+        ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm", "energy"))}
+    s = np.linspace(0.0, 1.0, nodes)
+    profile = np.broadcast_to(np.sin(np.pi * s) * (0.01 * dd + pp)[..., None], (nd, npp, nodes))
+    n_inside = np.full(nd, nodes // 2)
+    return DesignMap(diameter_mm=d, fill=p, residual=np.full((nd, npp), 1e-12),
+                     converged=np.ones((nd, npp), bool), u_mm=profile.astype(np.float32),
+                     z_prof_mm=(2 * profile).astype(np.float32),
+                     dr_mm=d / (2 * DEFAULT_MATERIAL.eta * n_inside), n_inside=n_inside,
+                     material=DEFAULT_MATERIAL, material_hash=material_hash(DEFAULT_MATERIAL),
+                     flags=np.zeros((nd, npp), np.int8), **tables)

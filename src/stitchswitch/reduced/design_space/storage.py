@@ -19,7 +19,7 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError, StitchSwitchError
 from stitchswitch.files.atomic import atomic_write_bytes
-from stitchswitch.reduced.design_space.design_map import KEYPOINTS, DesignMap
+from stitchswitch.reduced.design_space.design_map import FLAG_NAMES, KEYPOINTS, DesignMap
 
 FORMAT = "stitchswitch-design-map-1"
 _TABLES = KEYPOINTS + ("energy", "residual")
@@ -55,37 +55,114 @@ def save_map(dmap: DesignMap, path: str | os.PathLike) -> None:
 
 
 def load_map(path) -> DesignMap:
-    """Read and check a map file; errors name the file and the problem."""
+    """Read and check a map file completely, so that every query of the returned map works:
+    a file that is not a readable ``.npz`` (truncated, a bad zip or zlib stream), that lacks an
+    array or whose arrays have the wrong kind, shape or values (grids not strictly increasing,
+    a non-finite table, a node count out of range), or whose material does not load or match
+    its hash, raises one ``InvalidInputError`` naming the file and the problem."""
     from stitchswitch.reduced.model.material_io import material_from_json, material_hash
 
     where = f"design map {os.fspath(path)!r}"
-    try:
-        with np.load(path, allow_pickle=False) as f:
-            data = {k: f[k] for k in f.files}
-    except (OSError, ValueError, EOFError) as exc:
-        raise InvalidInputError(f"{where}: cannot be read as a .npz file ({exc})") from None
-    if str(data.get("format", "")) != FORMAT:
-        raise InvalidInputError(f"{where}: not a {FORMAT} file (format {data.get('format')!s})")
-    required = set(_TABLES) | {"diameter_mm", "fill", "converged", "u_mm", "z_mm", "dr_mm",
-                               "n_inside", "flags", "material_json", "material_hash",
-                               "profile_quantum_mm"}
-    missing = sorted(required - set(data))
+    data = _read_npz(path, where)
+    if _scalar_text(data.get("format")) != FORMAT:
+        raise InvalidInputError(f"{where}: not a {FORMAT} file")
+    missing = sorted(set(_KINDS) - set(data))
     if missing:
         raise InvalidInputError(f"{where}: missing array(s) {', '.join(missing)}")
+    for name, kinds in _KINDS.items():
+        if data[name].dtype.kind not in kinds:
+            raise InvalidInputError(f"{where}: {name} has dtype {data[name].dtype}, expected "
+                                    f"{_KIND_NAMES[kinds]}")
+    _check_shapes(data, where)
     if float(data["profile_quantum_mm"]) != PROFILE_QUANTUM_MM:
-        raise InvalidInputError(f"{where}: unsupported profile quantum {data['profile_quantum_mm']}")
-    material = material_from_json(str(data["material_json"]), f"{where}: material")
-    if material_hash(material) != str(data["material_hash"]):
+        raise InvalidInputError(f"{where}: unsupported profile quantum "
+                                f"{float(data['profile_quantum_mm']):g}")
+    _check_values(data, where)
+    material = material_from_json(_scalar_text(data["material_json"]), f"{where}: material")
+    if material_hash(material) != _scalar_text(data["material_hash"]):
         raise InvalidInputError(f"{where}: the material hash does not match its material")
-    nd, npp = data["diameter_mm"].size, data["fill"].size
-    for name in _TABLES + ("converged", "flags"):
-        if data[name].shape != (nd, npp):
-            raise InvalidInputError(f"{where}: {name} has shape {data[name].shape}, expected {(nd, npp)}")
     return DesignMap(
         diameter_mm=data["diameter_mm"].astype(float), fill=data["fill"].astype(float),
         **{name: data[name].astype(float) for name in _TABLES},
         converged=data["converged"].astype(bool),
         u_mm=_decode(data["u_mm"]), z_prof_mm=_decode(data["z_mm"]),
         dr_mm=data["dr_mm"].astype(float), n_inside=data["n_inside"].astype(int),
-        material=material, material_hash=str(data["material_hash"]),
+        material=material, material_hash=_scalar_text(data["material_hash"]),
         flags=data["flags"].astype(np.int8))
+
+
+#: The dtype kinds each array may have (f float, b bool, i/u integer, U text).
+_KINDS = {**{name: "f" for name in _TABLES}, "diameter_mm": "f", "fill": "f", "dr_mm": "f",
+          "profile_quantum_mm": "f", "converged": "b", "flags": "iu", "n_inside": "iu",
+          "u_mm": "i", "z_mm": "i", "material_json": "U", "material_hash": "U", "format": "U"}
+_KIND_NAMES = {"f": "floats", "b": "booleans", "iu": "integers", "i": "signed integers",
+               "U": "text"}
+#: The most a map may hold uncompressed (the default map holds 11 MB).
+MAX_MAP_BYTES = 2 * 1024 ** 3
+
+
+def _read_npz(path, where: str) -> dict:
+    """Every array of the file, read with numpy's npz reader (no pickles), its declared
+    uncompressed size bounded first."""
+    import zipfile
+
+    try:
+        with zipfile.ZipFile(path) as z:
+            total = sum(info.file_size for info in z.infolist())
+        if total > MAX_MAP_BYTES:
+            raise InvalidInputError(f"{where}: holds {total / 1024 ** 3:.1f} GiB uncompressed, "
+                                    f"more than the limit of {MAX_MAP_BYTES / 1024 ** 3:g} GiB")
+        with np.load(path, allow_pickle=False) as f:
+            return {k: f[k] for k in f.files}
+    except InvalidInputError:
+        raise
+    except OSError as exc:
+        raise InvalidInputError(f"{where}: cannot be read ({exc.strerror or exc})") from None
+    except Exception as exc:   # zipfile, zlib and numpy's header parser raise many types
+        raise InvalidInputError(f"{where}: cannot be read as a .npz file "
+                                f"({type(exc).__name__}: {str(exc)[:80]})") from None
+
+
+def _scalar_text(value) -> str | None:
+    """The text of a 0-d text array; None for anything else."""
+    if value is None or value.shape != () or value.dtype.kind != "U":
+        return None
+    return str(value)
+
+
+def _check_shapes(data: dict, where: str) -> None:
+    nd, npp = (data[name].shape[0] if data[name].ndim else 0 for name in ("diameter_mm", "fill"))
+    grid = (nd, npp)
+    nodes = data["u_mm"].shape[2] if data["u_mm"].ndim == 3 else 0
+    expected = {"diameter_mm": (nd,), "fill": (npp,), "dr_mm": (nd,), "n_inside": (nd,),
+                **{name: grid for name in _TABLES + ("converged", "flags")},
+                "u_mm": grid + (nodes,), "z_mm": grid + (nodes,), "profile_quantum_mm": (),
+                "material_json": (), "material_hash": ()}
+    for name, shape in expected.items():
+        if data[name].shape != shape:
+            raise InvalidInputError(f"{where}: {name} has shape {data[name].shape}, expected "
+                                    f"{shape}")
+    if nd < 2 or npp < 2 or nodes < 2:
+        raise InvalidInputError(f"{where}: the grid is {nd} x {npp} designs of {nodes} nodes, "
+                                "at least 2 x 2 of 2 nodes are needed to interpolate")
+
+
+def _check_values(data: dict, where: str) -> None:
+    for name in ("diameter_mm", "fill"):
+        grid = data[name]
+        if not np.all(np.isfinite(grid)) or np.any(np.diff(grid) <= 0):
+            raise InvalidInputError(f"{where}: {name} is not a strictly increasing grid of "
+                                    "finite numbers")
+    for name in _TABLES + ("dr_mm",):
+        if not np.all(np.isfinite(data[name])):
+            raise InvalidInputError(f"{where}: {name} holds a value that is not finite")
+    if np.any(data["dr_mm"] <= 0):
+        raise InvalidInputError(f"{where}: dr_mm holds a node spacing <= 0")
+    nodes = data["u_mm"].shape[2]
+    n_inside = data["n_inside"]
+    if np.any(n_inside < 1) or np.any(n_inside >= nodes):
+        raise InvalidInputError(f"{where}: n_inside holds a boundary node outside [1, "
+                                f"{nodes - 1}]")
+    if not np.all(np.isin(data["flags"], list(FLAG_NAMES))):
+        raise InvalidInputError(f"{where}: flags holds a code that is not one of "
+                                f"{sorted(FLAG_NAMES)}")
