@@ -14,6 +14,8 @@
 * ``json_checks``: ``loads`` / ``load_file`` and the typed checks (``obj``, ``array``, ``items``,
   ``text``, ``number``, ``integer``, ``choice``, ``unique``) of the JSON files the package reads
   (design, machine catalogue, material), each error naming the file and the JSON path.
+* ``shown``: ``show`` / ``show_all`` / ``clip``, input values shortened for error messages (every
+  message that repeats a value uses them).
 * ``extensions``: ``check_extension``, an output path's extension checked before any work.
 
 Nothing here knows about the model: every other sub-package may import it.

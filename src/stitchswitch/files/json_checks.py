@@ -21,8 +21,7 @@ builds them). Every check takes the value and its path, returns the checked valu
 Values appear in messages as written in the file (``true``, ``null``, ``[1, 2]``) except
 strings, which are quoted as in every other message of the package (``'abc'``), and never in
 full: ``show`` shortens one to about 60 characters, ``show_all`` lists a few, ``clip`` shortens
-any text (a long JSON path too). Every message of the package that repeats an input value
-uses them.
+any text (a long JSON path too); they live in ``files.shown`` and are re-exported here.
 """
 from __future__ import annotations
 
@@ -34,13 +33,13 @@ from contextlib import contextmanager
 from typing import NoReturn
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.shown import clip, show, show_all
 
 __all__ = ["ROOT", "MAX_DEPTH", "MAX_INT_DIGITS", "JsonError", "child", "clip", "show",
            "show_all", "kind", "reporting", "at", "fail", "loads",
            "load_file", "obj", "array", "items", "text", "number", "integer", "choice", "unique"]
 
 ROOT = "$"
-_SHOW_MAX = 60
 _PATH_MAX = 100
 #: Limits of a parsed document: no file the package reads nests more than a few levels or
 #: holds an integer of more than a few digits.
@@ -62,33 +61,6 @@ def child(path: str, key) -> str:
         return f"{path}[{key}]"
     key = str(key)
     return f"{path}.{key}" if key.isidentifier() else f"{path}[{json.dumps(key)}]"
-
-
-def clip(text: str, most: int = 60) -> str:
-    """``text`` shortened to ``most`` characters (ending in "..." when cut)."""
-    return text if len(text) <= most else text[:most - 3] + "..."
-
-
-def show_all(values, most: int = 5, *, quoted: bool = False) -> str:
-    """``values`` as messages list them, at most ``most``, each shortened: names unquoted,
-    or ``show`` of each if ``quoted``."""
-    values = list(values)
-    out = ", ".join(show(v) if quoted else clip(str(v)) for v in values[:most])
-    return out + (f", ... ({len(values)} in all)" if len(values) > most else "")
-
-
-def show(value) -> str:
-    """``value`` as messages show it, shortened to about 60 characters."""
-    if isinstance(value, str):
-        out = repr(value)
-    elif isinstance(value, float) and not math.isfinite(value):
-        out = "NaN" if math.isnan(value) else ("Infinity" if value > 0 else "-Infinity")
-    else:
-        try:
-            out = json.dumps(value, ensure_ascii=False)
-        except (TypeError, ValueError):
-            out = repr(value)
-    return clip(out, _SHOW_MAX)
 
 
 def kind(value) -> str:

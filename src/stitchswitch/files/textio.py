@@ -60,10 +60,10 @@ def csv_records(text: str):
 
 def csv_number(text: str, where: str, column: str) -> float:
     """A finite float from a CSV cell; errors name ``where`` (file and line) and the column,
-    and show the cell shortened (``json_checks.show``)."""
+    and show the cell shortened (``files.shown.show``)."""
     import math
 
-    from stitchswitch.files.json_checks import show
+    from stitchswitch.files.shown import show
 
     if text == "":
         raise InvalidInputError(f"{where}, column {column}: the value is empty")

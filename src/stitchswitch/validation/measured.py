@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.files.json_checks import show
+from stitchswitch.files.shown import show
 from stitchswitch.files.textio import csv_number, csv_records, read_text
 from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM
 

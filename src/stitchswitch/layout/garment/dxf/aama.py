@@ -10,7 +10,9 @@ from __future__ import annotations
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.garment.dxf.generic import chain_loops, flatten
+from stitchswitch.files.shown import clip
+from stitchswitch.layout.garment.dxf.chain import chain_loops
+from stitchswitch.layout.garment.dxf.generic import block_entities, check_point, flatten
 
 UNIT_TEXT = {"ENGLISH": ("in", 25.4), "METRIC": ("mm", 1.0)}
 
@@ -19,15 +21,22 @@ def text_fields(entities) -> dict[str, str]:
     """`Key: value` TEXTs as {KEY: value} (key upper case)."""
     out = {}
     for e in entities:
-        if e.dxftype() == "TEXT" and ":" in e.dxf.text:
-            key, value = e.dxf.text.split(":", 1)
+        text = e.dxf.get("text") if e.dxftype() == "TEXT" else None
+        if isinstance(text, str) and ":" in text:
+            key, value = text.split(":", 1)
             out.setdefault(key.strip().upper(), value.strip())
     return out
 
 
+def _block(doc, insert):
+    """The block an INSERT places, None if it names none or a missing one."""
+    name = insert.dxf.get("name")
+    return doc.blocks.get(name) if isinstance(name, str) and name else None
+
+
 def is_aama(doc) -> bool:
     """True when a block placed in model space carries a `Piece Name:` text."""
-    return any("PIECE NAME" in text_fields(doc.blocks.get(i.dxf.name) or [])
+    return any("PIECE NAME" in text_fields(_block(doc, i) or [])
                for i in doc.modelspace().query("INSERT"))
 
 
@@ -36,35 +45,44 @@ def units_from_text(doc) -> tuple[str, float] | None:
     if value is None:
         return None
     if value.upper() not in UNIT_TEXT:
-        raise InvalidInputError(f"unknown units text 'Units: {value}' (expected ENGLISH or METRIC)")
+        raise InvalidInputError(f"unknown units text 'Units: {clip(value)}' (expected ENGLISH or "
+                                "METRIC)")
     return UNIT_TEXT[value.upper()]
 
 
-def read_aama(doc, tolerance: float, snap: float, unit: str, scale: float, source: str):
+def _polylines(entities, tolerance: float, limit: float, where: str) -> list:
+    return [p for e in entities if (p := flatten(e, tolerance, limit, where)) is not None]
+
+
+def read_aama(doc, tolerance: float, snap: float, unit: str, scale: float, source: str,
+              limit: float):
     """(name, size, ring, annotations) per INSERT, in drawing units, INSERT transform applied."""
     pieces = []
     for insert in doc.modelspace().query("INSERT"):
-        block = doc.blocks.get(insert.dxf.name)
+        block = _block(doc, insert)
         if block is None:
-            raise InvalidInputError(f"{source}: INSERT refers to a missing block '{insert.dxf.name}'")
+            raise InvalidInputError(f"{source}: INSERT refers to a missing block "
+                                    f"{clip(str(insert.dxf.get('name')))!r}")
         fields = text_fields(block)
-        entities = list(insert.virtual_entities())
+        where = f"{source}: block {clip(block.name)!r}"
         layer = {}
-        for e in entities:
-            layer.setdefault(e.dxf.layer, []).append(e)
-        where = f"{source}: block '{block.name}'"
-        fragments = [p for e in layer.get("1", []) if (p := flatten(e, tolerance)) is not None]
+        for e in block_entities(insert, where):
+            layer.setdefault(e.dxf.get("layer"), []).append(e)
+        fragments = _polylines(layer.get("1", []), tolerance, limit, where)
         if not fragments:
             raise InvalidInputError(f"{where}: no boundary on layer 1")
         rings = chain_loops(fragments, snap, where, unit, scale)
         if len(rings) != 1:
             raise InvalidInputError(f"{where}: boundary on layer 1 forms {len(rings)} closed "
                                     f"outlines, expected 1")
-        lines = [p for e in layer.get("8", []) if (p := flatten(e, tolerance)) is not None]
-        grain = [p for e in layer.get("7", []) if (p := flatten(e, tolerance)) is not None]
-        notches = [(e.dxf.location.x, e.dxf.location.y) if e.dxftype() == "POINT"
-                   else (e.dxf.start.x, e.dxf.start.y)            # a notch LINE starts on the edge
-                   for e in layer.get("4", []) if e.dxftype() in ("POINT", "LINE")]
+        lines = _polylines(layer.get("8", []), tolerance, limit, where)
+        grain = _polylines(layer.get("7", []), tolerance, limit, where)
+        notches = []
+        for e in layer.get("4", []):
+            if e.dxftype() in ("POINT", "LINE"):
+                p = e.dxf.location if e.dxftype() == "POINT" else e.dxf.start  # a notch LINE starts on the edge
+                check_point(p, limit, e, "notch", where)
+                notches.append((p[0], p[1]))
         annotations = {"grain_line": grain[0] if grain else None,
                        "internal_lines": lines,
                        "notches": np.array(notches, dtype=float).reshape(-1, 2)}

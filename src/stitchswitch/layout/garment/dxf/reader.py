@@ -13,12 +13,18 @@ from pathlib import Path
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.shown import clip
+from stitchswitch.layout.garment.dxf.generic import GEOMETRY_ERRORS
 
 log = logging.getLogger(__name__)
 
 # $INSUNITS code -> (unit name, mm per unit)
 INSUNITS = {1: ("in", 25.4), 2: ("ft", 304.8), 4: ("mm", 1.0), 5: ("cm", 10.0), 6: ("m", 1000.0)}
 UNITS = {name: (name, mm) for name, mm in INSUNITS.values()}
+#: The largest DXF file read, and the largest coordinate or radius accepted (1 km): a garment
+#: pattern is a few MB and a few metres.
+MAX_DXF_BYTES = 256 * 1024 ** 2
+MAX_EXTENT_MM = 1e6
 
 
 @dataclass(frozen=True, eq=False)
@@ -63,25 +69,36 @@ def import_dxf(path, *, tolerance_mm: float = 0.1, snap_mm: float = 0.5,
     if tolerance_mm <= 0 or snap_mm <= 0:
         raise InvalidInputError(f"tolerance_mm and snap_mm must be > 0, got {tolerance_mm}, {snap_mm}")
     try:
+        size = path.stat().st_size
         with open(path, "rb") as f:
-            f.seek(max(0, path.stat().st_size - 64))
+            f.seek(max(0, size - 64))
             truncated = b"EOF" not in f.read()          # recover mode would silently drop the rest
-        if not truncated:
-            doc, auditor = recover.readfile(path)
-    except (OSError, DXFError, UnicodeDecodeError, ValueError) as exc:
-        raise InvalidInputError(f"{path}: not a readable DXF file ({str(exc)[:120]})") from None
+    except OSError as exc:
+        raise InvalidInputError(f"{path}: not a readable DXF file ({exc.strerror or exc})") from None
+    if size > MAX_DXF_BYTES:
+        raise InvalidInputError(f"{path}: larger than {MAX_DXF_BYTES // 1024 ** 2} MiB, the limit "
+                                "of a DXF input")
     if truncated:
         raise InvalidInputError(f"{path}: truncated DXF file: it does not end with the EOF marker")
+    try:
+        doc, auditor = recover.readfile(path)
+    except Exception as exc:    # ezdxf's parser raises anything (IndexError, ...) on bad structure
+        kind = "" if isinstance(exc, (DXFError, OSError)) else f"{type(exc).__name__}: "
+        raise InvalidInputError(f"{path}: not a readable DXF file ({kind}"
+                                f"{clip(str(exc), 100)})") from None
     repairs = tuple(f"{m.message}" for m in (*auditor.errors, *auditor.fixes))
     if repairs:
         log.warning("%s: ezdxf recover mode repaired %d problem(s), e.g. %s",
                     path, len(repairs), repairs[0])
-    aama = is_aama(doc)
     try:
+        aama = is_aama(doc)
         unit, scale = _units(doc, units, units_from_text)
     except InvalidInputError as exc:
         raise InvalidInputError(f"{path}: {exc}") from None
-    args = (tolerance_mm / scale, snap_mm / scale, unit, scale, str(path))
+    except GEOMETRY_ERRORS as exc:
+        raise InvalidInputError(f"{path}: malformed DXF structure ({type(exc).__name__}: "
+                                f"{clip(str(exc), 80)})") from None
+    args = (tolerance_mm / scale, snap_mm / scale, unit, scale, str(path), MAX_EXTENT_MM / scale)
     raw = read_aama(doc, *args) if aama else read_generic(doc, *args)
     pieces = [Piece(name, size, ring * scale, str(path), _scaled(ann, scale))
               for name, size, ring, ann in raw]
@@ -99,7 +116,7 @@ def _units(doc, override, units_from_text) -> tuple[str, float]:
     found = units_from_text(doc)
     if found is not None:
         return found
-    raise InvalidInputError(f"unknown units: $INSUNITS is {code} and there is no 'Units:' text; "
+    raise InvalidInputError(f"unknown units: $INSUNITS is {clip(str(code))} and there is no 'Units:' text; "
                             f"pass units= one of {sorted(UNITS)}")
 
 
