@@ -7,7 +7,8 @@
 * ``stitches``: ``plan_stitches`` (tatami and satin fill, ties, travel, trims) and
   ``StitchParams``; ``ordering``: the visiting order.
 * ``export``: the format registry (``register_format``, ``get_format``, ``write``);
-  ``stitch_preview``: SVG/PNG of a stitch plan.
+  ``stitch_preview``: SVG/PNG of a stitch plan; ``file_summary``: ``summarise`` an embroidery
+  file from anywhere (counts, extents, fitting hoops), refusing malformed ones.
 * ``machines``: the machine and hoop catalogue, the one API for both (``catalogue``,
   ``Catalogue.machine``, ``Machine.hoop`` / ``largest_hoop`` / ``choose_hoop``,
   ``DEFAULT_MACHINE``, ``load_machines``); ``hoop_spec``: ``Hoop`` and its JEF codes.
