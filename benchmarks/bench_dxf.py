@@ -95,9 +95,8 @@ def main(argv=None) -> int:
     chain_loops(shuffled_lines(10), 0.5, "warm-up", "mm", 1.0)     # scipy's import is not chaining
     rows = []
     for n in sizes:
-        lines = shuffled_lines(n)
-        loops = []
-        seconds = best_of(args.repeat, lambda lines=lines: loops.append(
+        lines, loops = shuffled_lines(n), []
+        seconds = best_of(args.repeat, lambda lines=lines, loops=loops: loops.append(
             chain_loops(lines, 0.5, "bench", "mm", 1.0)))
         assert len(loops[-1]) == 1 and len(loops[-1][0]) == n
         rows.append({"lines": n, "chain_s": seconds})
