@@ -35,16 +35,19 @@ from typing import NoReturn
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.files.shown import clip, show, show_all
 
-__all__ = ["ROOT", "MAX_DEPTH", "MAX_INT_DIGITS", "JsonError", "child", "clip", "show",
+__all__ = ["ROOT", "MAX_DEPTH", "MAX_INT_DIGITS", "MAX_NAME", "JsonError", "child", "clip", "show",
            "show_all", "kind", "reporting", "at", "fail", "loads",
            "load_file", "obj", "array", "items", "text", "number", "integer", "choice", "unique"]
 
 ROOT = "$"
-_PATH_MAX = 100
+_PATH_MAX = 60
+_KEY_MAX = 32
 #: Limits of a parsed document: no file the package reads nests more than a few levels or
 #: holds an integer of more than a few digits.
 MAX_DEPTH = 32
 MAX_INT_DIGITS = 400
+#: The longest name (a patch id, a piece name) ``text(..., printable=True)`` accepts.
+MAX_NAME = 100
 
 
 class JsonError(Exception):
@@ -56,10 +59,11 @@ class JsonError(Exception):
 
 
 def child(path: str, key) -> str:
-    """The path of item ``key`` (an array index or an object key) of the value at ``path``."""
+    """The path of item ``key`` (an array index or an object key, shortened to 32 characters)
+    of the value at ``path``."""
     if isinstance(key, int) and not isinstance(key, bool):
         return f"{path}[{key}]"
-    key = str(key)
+    key = clip(str(key), _KEY_MAX)
     return f"{path}.{key}" if key.isidentifier() else f"{path}[{json.dumps(key)}]"
 
 
@@ -215,7 +219,7 @@ def obj(value, path: str, required=(), optional=(), *, what: str | None = None) 
         if guess:
             message += f"; did you mean {guess[0]!r}?"
         if len(unknown) > 1:
-            message += "; also unknown: " + show_all(unknown[1:], 3, quoted=True)
+            message += "; also unknown: " + show_all(unknown[1:], 2, quoted=True, width=24)
         fail(child(path, unknown[0]), message)
     missing = [k for k in required if k not in value]
     if missing:
@@ -243,12 +247,15 @@ def items(value, path: str, check, *, nonempty: bool = False) -> list:
 # --- scalars -------------------------------------------------------------------------------
 
 def text(value, path: str, *, nonempty: bool = False, printable: bool = False) -> str:
-    """``value``, a string (not blank if ``nonempty``; without control characters such as NUL
-    or a line break if ``printable``, for names that end up in file names and in tables)."""
+    """``value``, a string (not blank if ``nonempty``; if ``printable``, a name that ends up in
+    tables and messages: at most ``MAX_NAME`` characters, without control characters such as
+    NUL or a line break)."""
     if not isinstance(value, str):
         fail(path, f"must be a string, {_got(value)}")
     if nonempty and not value.strip():
         fail(path, "must not be empty")
+    if printable and len(value) > MAX_NAME:
+        fail(path, f"{show(value)} is {len(value)} characters long, more than {MAX_NAME}")
     if printable:
         bad = next((i for i, c in enumerate(value) if unicodedata.category(c) == "Cc"), None)
         if bad is not None:

@@ -21,11 +21,11 @@ def clip(text: str, most: int = 60) -> str:
     return text if len(text) <= most else text[:most - 3] + "..."
 
 
-def show_all(values, most: int = 5, *, quoted: bool = False) -> str:
-    """``values`` as messages list them, at most ``most``, each shortened: names unquoted,
-    or ``show`` of each if ``quoted``."""
+def show_all(values, most: int = 5, *, quoted: bool = False, width: int = _SHOW_MAX) -> str:
+    """``values`` as messages list them, at most ``most``, each shortened to ``width``
+    characters: names unquoted, or ``show`` of each if ``quoted``."""
     values = list(values)
-    out = ", ".join(show(v) if quoted else clip(str(v)) for v in values[:most])
+    out = ", ".join(clip(show(v) if quoted else str(v), width) for v in values[:most])
     return out + (f", ... ({len(values)} in all)" if len(values) > most else "")
 
 

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.shown import clip, show
 from stitchswitch.layout.embroidery import tessellation as tess
 
 DIAMETER_RANGE_MM = (5.0, 360.0)
@@ -194,6 +195,6 @@ def parse_selection(spec: str) -> Selection:
     except ValueError as exc:
         if isinstance(exc, InvalidInputError):
             raise
-        raise InvalidInputError(f"cannot read the selection {spec!r}: {exc}") from None
-    raise InvalidInputError(f"unknown selection {spec!r}; use index:I,J,..., ring:K,..., "
+        raise InvalidInputError(f"cannot read the selection {show(spec)}: {clip(str(exc), 80)}") from None
+    raise InvalidInputError(f"unknown selection {show(spec)}; use index:I,J,..., ring:K,..., "
                             "annulus:INNER:OUTER or polygon:X,Y;X,Y;...")

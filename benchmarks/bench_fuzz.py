@@ -1,0 +1,347 @@
+"""Benchmark: the loaders against generated bad input (fuzzing).
+
+Every loader of a user's file gets corrupted copies of real files (the shipped data in
+``src/stitchswitch/data``, the external fixtures in ``tests/data/external``, a map and a design
+written here): byte edits (bit flips, inserted and deleted runs, zeroed runs, truncation) and
+structured edits (CSV and DXF lines deleted, repeated or replaced and cells replaced by nasty
+values; one JSON value replaced by a wrong type, a 5,000-digit or out-of-range number, deep
+nesting, a long or control-character string, a key removed or added; a map's arrays replaced
+by ones of the wrong kind, shape or values). Each case is loaded once, in this process, with a
+10 s alarm:
+
+* crash: the loader raised anything but ``InvalidInputError``;
+* bad message: an ``InvalidInputError`` of 300 characters or more (the file's path not
+  counted) or one that does not name the file;
+* hang: the case took more than 10 s (the alarm fired).
+
+A loaded map is queried at a random point of its domain, with profiles (a map that loads must
+answer). Target: 0 crashes, 0 bad messages, 0 hangs over >= 10,000 cases. Cases are generated
+from ``--seed``, so a run is repeatable; the first case of every distinct failure is written
+to ``--keep`` (default: not kept) for replay.
+
+    python benchmarks/bench_fuzz.py [--cases 10500] [--seed 0] [--keep DIR] [--json]
+"""
+from __future__ import annotations
+
+import argparse
+import collections
+import io
+import json
+import logging
+import pathlib
+import random
+import signal
+import tempfile
+import time
+import traceback
+
+import numpy as np
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+DATA = ROOT / "src" / "stitchswitch" / "data"
+EXTERNAL = ROOT / "tests" / "data" / "external"
+HANG_S = 10.0
+MAX_MESSAGE = 300
+
+NASTY = ["", "nan", "NaN", "inf", "-Infinity", "1e999", "-1e999", "-1", "0", "-0", "1e-320",
+         "9" * 5000, "1" + "0" * 400, "x" * 140_000, "\x00", "null", "true", "[]", "{}", '"',
+         ",", "#", "\ufeff", "\u202e", "0x10", "1_000", " 7 ", "\t", "train", "val", "nan,nan"]
+RAW_JSON = ["NaN", "Infinity", "-Infinity", "1e999", "9" * 5000, "1" + "0" * 400, "-" + "9" * 320,
+            "[" * 5000 + "]" * 5000, "[" * 40 + "1" + "]" * 40, '"' + "x" * 100_000 + '"',
+            '"p\\u00001"', '"a\\nb"', "true", "null", "[]", "{}", '{"a": 1, "a": 2}', "0.5",
+            "-3", "1e-400", '""', '"#zzzzzz"', "[0, 0]", "[[0, 0], [1, 0]]", "1e308", "-0.0"]
+
+
+class Hang(Exception):
+    """The alarm of a case that ran longer than HANG_S."""
+
+
+# --- edits ---------------------------------------------------------------------------------
+
+def byte_edit(rng: random.Random, seed: bytes) -> bytes:
+    data = bytearray(seed)
+    for _ in range(rng.randint(1, 6)):
+        op = rng.choice(["flip", "flip", "insert", "delete", "truncate", "zero"])
+        at = rng.randrange(max(len(data), 1))
+        if op == "flip" and data:
+            data[at] ^= 1 << rng.randrange(8)
+        elif op == "insert":
+            data[at:at] = bytes(rng.randrange(256) for _ in range(rng.randint(1, 16)))
+        elif op == "delete":
+            del data[at:at + rng.randint(1, 64)]
+        elif op == "truncate":
+            del data[at:]
+        elif data:
+            data[at:at + rng.randint(1, 32)] = bytes(min(32, len(data) - at))
+    return bytes(data)
+
+
+def line_edit(rng: random.Random, seed: bytes, separator: str) -> bytes:
+    lines = seed.decode("utf-8", errors="replace").split("\n")
+    for _ in range(rng.randint(1, 4)):
+        i = rng.randrange(len(lines))
+        op = rng.choice(["delete", "repeat", "replace", "cell", "cell"])
+        if op == "delete":
+            del lines[i:i + rng.randint(1, 8)]
+        elif op == "repeat":
+            lines[i:i] = lines[i:i + rng.randint(1, 8)]
+        elif op == "replace":
+            lines[i] = rng.choice(NASTY)
+        else:
+            cells = lines[i].split(separator)
+            cells[rng.randrange(len(cells))] = rng.choice(NASTY)
+            lines[i] = separator.join(cells)
+        lines = lines or [""]
+    return "\n".join(lines).encode("utf-8", errors="surrogatepass")
+
+
+def _paths(value, path=()):
+    yield path
+    if isinstance(value, dict):
+        for k, v in value.items():
+            yield from _paths(v, path + (k,))
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            yield from _paths(v, path + (i,))
+
+
+def json_edit(rng: random.Random, seed: bytes) -> bytes:
+    doc, raws = json.loads(seed), []
+    for _ in range(rng.randint(1, 3)):
+        path = rng.choice(list(_paths(doc)))
+        op = rng.choice(["raw", "raw", "delete", "unknown"])
+        if op == "raw" or not path:
+            raws.append(rng.choice(RAW_JSON))
+            marker = f"@@RAW{len(raws) - 1}@@"
+            if not path:
+                doc = marker
+                break
+            parent = doc
+            for key in path[:-1]:
+                parent = parent[key]
+            parent[path[-1]] = marker
+            continue
+        parent = doc
+        for key in path[:-1]:
+            parent = parent[key]
+        if op == "delete":
+            del parent[path[-1]]
+        elif isinstance(parent, dict):
+            parent[rng.choice(["x", "k" * 5000, "fil", "\x00"])] = 1
+    text = json.dumps(doc)
+    for k, raw in enumerate(raws):
+        text = text.replace(json.dumps(f"@@RAW{k}@@"), raw)
+    return text.encode("utf-8", errors="surrogatepass")
+
+
+MAP_REPLACEMENTS = [np.zeros(0), np.zeros((3, 3)), np.zeros((2, 5)), np.zeros((3, 3, 40), np.int32),
+                    np.full((3, 3), np.nan), np.array(np.inf), np.array("x"),
+                    np.array([42.0, 41.0, 40.0]), np.array([40.0, 40.0, 41.0]),
+                    np.zeros((3, 3), bool), np.ones(3, np.int64) * 10 ** 6, np.array(1e-4),
+                    np.full((3, 3), 7, np.int8), np.array(["a", "b"]), np.zeros((2, 2, 2)),
+                    np.array(-1.0), np.zeros(3, np.int64)]
+
+
+def map_edit(rng: random.Random, seed: bytes) -> bytes:
+    with np.load(io.BytesIO(seed)) as f:
+        arrays = {k: f[k] for k in f.files}
+    for _ in range(rng.randint(1, 3)):
+        name = rng.choice(sorted(arrays))
+        k = rng.randrange(-1, len(MAP_REPLACEMENTS))
+        if k < 0:
+            arrays.pop(name)
+        else:
+            arrays[name] = MAP_REPLACEMENTS[k]
+        if not arrays:
+            break
+    buf = io.BytesIO()
+    np.savez_compressed(buf, **arrays)
+    return buf.getvalue()
+
+
+# --- loaders and their seeds -------------------------------------------------------------
+
+def _design_seed() -> bytes:
+    return json.dumps({
+        "version": 1,
+        "pieces": [{"name": "front", "size": "M", "source": "bench",
+                    "outline_mm": [[0, 0], [300, 0], [300, 250], [0, 250]]}],
+        "patches": [{"id": "a", "piece": "front", "centre_mm": [60, 60], "diameter_mm": 24,
+                     "fill": 0.8, "conductive": "ring:0", "state": "up"},
+                    {"id": "b", "piece": "front", "centre_mm": [150, 120], "diameter_mm": 40,
+                     "fill": 0.7, "composite": {"core_diameter_mm": 20, "core_fill": 0.9},
+                     "outline_mm": [[-20, 0], [0, -20], [20, 0], [0, 20]]}],
+        "material": {"name": "default"}, "machine": {"name": "janome-550e", "hoop": "SQ14b"},
+    }, indent=1).encode()
+
+
+def _map_seed(tmp: pathlib.Path) -> bytes:
+    from stitchswitch import DEFAULT_MATERIAL
+    from stitchswitch.reduced.design_space import precompute, storage
+
+    dmap = precompute.build(DEFAULT_MATERIAL, np.array([40.0, 41.0, 42.0]), np.array([0.7, 0.75, 0.8]))
+    storage.save_map(dmap, tmp / "seed.npz")
+    return (tmp / "seed.npz").read_bytes()
+
+
+def _load_map(path):
+    from stitchswitch.reduced.design_space.storage import load_map
+
+    dmap = load_map(path)
+    d, p = dmap.diameter_mm, dmap.fill
+    dmap.query(d[0] + 0.37 * (d[-1] - d[0]), p[0] + 0.61 * (p[-1] - p[0]), profiles=True)
+    return dmap
+
+
+def groups(tmp: pathlib.Path) -> dict:
+    """name -> (loader, suffix, [(seed name, bytes, [edit functions])])."""
+    from stitchswitch.layout.embroidery.export import supported_formats
+    from stitchswitch.layout.embroidery.file_summary import summarise
+    from stitchswitch.layout.embroidery.machines import load_machines
+    from stitchswitch.layout.garment.design_io import load_design
+    from stitchswitch.layout.garment.dxf.reader import import_dxf
+    from stitchswitch.reduced.design_space.force_model import load_force_csv
+    from stitchswitch.reduced.model.material_io import load_material
+    from stitchswitch.validation.measured import load_measurements
+
+    def csv(rng, seed):
+        return line_edit(rng, seed, ",")
+
+    def dxf(rng, seed):
+        return line_edit(rng, seed, "\n")
+
+    def read(path):
+        return path.read_bytes()
+
+    formats = supported_formats()
+    return {
+        "measured CSV": (load_measurements, ".csv",
+                         [("measured_synthetic.csv", read(DATA / "measured_synthetic.csv"),
+                           [byte_edit, csv, csv])]),
+        "force CSV": (load_force_csv, ".csv",
+                      [("force_synthetic.csv", read(DATA / "force_synthetic.csv"),
+                        [byte_edit, csv, csv])]),
+        "material JSON": (load_material, ".json",
+                          [("default_material.json", read(DATA / "default_material.json"),
+                            [byte_edit, json_edit, json_edit])]),
+        "design JSON": (load_design, ".json",
+                        [("design.json", _design_seed(), [byte_edit, json_edit, json_edit])]),
+        "machines JSON": (lambda p: load_machines(p, formats), ".json",
+                          [("machines.json", read(DATA / "machines.json"),
+                            [byte_edit, json_edit, json_edit])]),
+        "map npz": (_load_map, ".npz",
+                    [("map (3 x 3 built here)", _map_seed(tmp), [byte_edit, map_edit, map_edit]),
+                     ("default_map.npz", read(DATA / "default_map.npz"), [byte_edit])]),
+        "DXF": (import_dxf, ".dxf",
+                [(p.name, read(p), [byte_edit, dxf, dxf])
+                 for p in sorted((EXTERNAL / "dxf").iterdir()) if p.stat().st_size < 20_000]),
+        "embroidery": (summarise, None,
+                       [(p.name, read(p), [byte_edit])
+                        for p in sorted((EXTERNAL / "embroidery").iterdir())]),
+    }
+
+
+# --- running -------------------------------------------------------------------------------
+
+def _alarm(signum, frame):
+    raise Hang()
+
+
+def run_case(load, path: pathlib.Path):
+    """('ok' | 'refused' | 'crash' | 'message' | 'hang', detail, seconds)."""
+    from stitchswitch.errors import InvalidInputError
+
+    signal.setitimer(signal.ITIMER_REAL, HANG_S)
+    start = time.perf_counter()
+    try:
+        load(path)
+        outcome, detail = "ok", ""
+    except Hang:
+        outcome, detail = "hang", "more than 10 s"
+    except InvalidInputError as exc:
+        message = str(exc).replace(str(path), "<file>")
+        if len(message) >= MAX_MESSAGE or "<file>" not in message and path.name not in message:
+            outcome, detail = "message", f"{len(message)} characters: {message[:160]}"
+        else:
+            outcome, detail = "refused", ""
+    except Exception as exc:
+        frames = [f for f in traceback.extract_tb(exc.__traceback__) if "stitchswitch" in f.filename]
+        where = f"{pathlib.Path(frames[-1].filename).name}:{frames[-1].lineno}" if frames else "?"
+        outcome, detail = "crash", f"{type(exc).__name__} at {where}: {str(exc)[:120]}"
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+    return outcome, detail, time.perf_counter() - start
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--cases", type=int, default=10_500, help="in all, shared by the groups")
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--keep", type=pathlib.Path, default=None,
+                    help="folder for the first case of every distinct failure")
+    ap.add_argument("--json", action="store_true")
+    args = ap.parse_args(argv)
+
+    logging.disable(logging.CRITICAL)             # ezdxf's recover messages, repairs
+    np.seterr(all="ignore")
+    signal.signal(signal.SIGALRM, _alarm)
+    rng = random.Random(args.seed)
+    rows, failures = [], {}
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        table = groups(tmp)
+        share = {"map npz": 0.07, "DXF": 0.1, "embroidery": 0.1}
+        rest = (1.0 - sum(share.values())) / (len(table) - len(share))
+        t0 = time.perf_counter()
+        for name, (load, suffix, seeds) in table.items():
+            n = round(args.cases * share.get(name, rest))
+            counts, slowest = collections.Counter(), 0.0
+            for _ in range(n):
+                seed_name, seed, edits = rng.choice(seeds)
+                data = rng.choice(edits)(rng, seed)
+                path = tmp / ("case" + (suffix or pathlib.Path(seed_name).suffix))
+                path.write_bytes(data)
+                outcome, detail, seconds = run_case(load, path)
+                counts[outcome] += 1
+                slowest = max(slowest, seconds)
+                if outcome in ("crash", "message", "hang"):
+                    key = (name, detail.split(":")[0] if outcome == "crash" else outcome)
+                    if key not in failures:
+                        failures[key] = {"group": name, "outcome": outcome, "seed": seed_name,
+                                         "detail": detail}
+                        if args.keep:
+                            args.keep.mkdir(parents=True, exist_ok=True)
+                            keep = args.keep / f"{len(failures):03d}-{path.name}"
+                            keep.write_bytes(data)
+                            failures[key]["kept"] = str(keep)
+            rows.append({"group": name, "cases": n, "loaded": counts["ok"],
+                         "refused": counts["refused"], "crashes": counts["crash"],
+                         "bad_messages": counts["message"], "hangs": counts["hang"],
+                         "slowest_s": slowest})
+        elapsed = time.perf_counter() - t0
+    total = {k: sum(r[k] for r in rows) for k in ("cases", "loaded", "refused", "crashes",
+                                                   "bad_messages", "hangs")}
+    target = (total["cases"] >= 10_000 and total["crashes"] == 0 and total["bad_messages"] == 0
+              and total["hangs"] == 0)
+    result = {"seed": args.seed, "rows": rows, "total": total, "elapsed_s": elapsed,
+              "failures": list(failures.values()), "target_met": target}
+    if args.json:
+        print(json.dumps(result, indent=1))
+        return 0
+    head = (f"{'group':<15}{'cases':>7}{'loaded':>8}{'refused':>9}{'crashes':>9}"
+            f"{'bad msg':>9}{'hangs':>7}{'slowest s':>11}")
+    print(head)
+    print("-" * len(head))
+    for r in rows + [dict(group="all", slowest_s=max(r["slowest_s"] for r in rows), **total)]:
+        print(f"{r['group']:<15}{r['cases']:>7}{r['loaded']:>8}{r['refused']:>9}"
+              f"{r['crashes']:>9}{r['bad_messages']:>9}{r['hangs']:>7}{r['slowest_s']:>11.2f}")
+    print(f"{elapsed:.0f} s in all")
+    for f in failures.values():
+        print(f"  {f['group']}: {f['outcome']} ({f['seed']}): {f['detail']}")
+    print(f"target 0 crashes / 0 bad messages / 0 hangs on >= 10,000 cases: "
+          f"{'PASS' if target else 'FAIL'}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
