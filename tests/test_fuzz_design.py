@@ -6,7 +6,8 @@ from hypothesis import given
 
 from stitchswitch.layout.garment.design_io import load_design
 
-from fuzzing import FUZZ, byte_edits, check_refusal, json_edits
+from fuzz_edits import byte_edit, json_edit
+from fuzzing import FUZZ, check_refusal, edited
 
 DESIGN = {
     "version": 1,
@@ -32,16 +33,8 @@ def test_the_seed_loads(tmp_path):
 
 
 @FUZZ
-@given(text=json_edits(DESIGN))
-def test_json_edits(tmp_path, text):
-    path = tmp_path / "design.json"
-    path.write_text(text, encoding="utf-8")
-    check_refusal(load_design, path)
-
-
-@FUZZ
-@given(data=byte_edits(json.dumps(DESIGN, indent=1).encode()))
-def test_byte_edits(tmp_path, data):
+@given(data=edited(json.dumps(DESIGN, indent=1).encode(), byte_edit, json_edit, json_edit))
+def test_corrupted_copies(tmp_path, data):
     path = tmp_path / "design.json"
     path.write_bytes(data)
     check_refusal(load_design, path)

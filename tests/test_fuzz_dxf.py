@@ -2,15 +2,18 @@
 repeated) and byte edits of real pattern files load or give one short error naming the file."""
 import logging
 
+import pytest
 from hypothesis import given
 
 from stitchswitch.layout.garment.dxf.reader import import_dxf
 
-from fuzzing import FUZZ, byte_edits, check_refusal, line_edits
+from fuzz_edits import byte_edit, line_edit
+from fuzzing import FUZZ, check_refusal, edited
 from helpers import EXTERNAL
 
-SEEDS = {name: (EXTERNAL / "dxf" / name).read_text(encoding="utf-8", errors="replace")
-         for name in ("clo-box_R10.dxf", "ezdxf_no_layouts_R2007_SPLINE.dxf")}
+
+def dxf_line_edit(rng, seed):
+    return line_edit(rng, seed, separator="\n")
 
 
 def load(path):
@@ -18,25 +21,15 @@ def load(path):
     return import_dxf(path)
 
 
-@FUZZ
-@given(text=line_edits(SEEDS["clo-box_R10.dxf"], separator="\n"))
-def test_line_edits_of_a_clo_export(tmp_path, text):
-    path = tmp_path / "pattern.dxf"
-    path.write_text(text, encoding="utf-8")
-    check_refusal(load, path)
+@pytest.mark.parametrize("name", ["clo-box_R10.dxf", "ezdxf_no_layouts_R2007_SPLINE.dxf"])
+def test_corrupted_copies(tmp_path, name):
+    seed = (EXTERNAL / "dxf" / name).read_bytes()
 
+    @FUZZ
+    @given(data=edited(seed, byte_edit, dxf_line_edit, dxf_line_edit))
+    def check(data):
+        path = tmp_path / "pattern.dxf"
+        path.write_bytes(data)
+        check_refusal(load, path)
 
-@FUZZ
-@given(text=line_edits(SEEDS["ezdxf_no_layouts_R2007_SPLINE.dxf"], separator="\n"))
-def test_line_edits_of_splines(tmp_path, text):
-    path = tmp_path / "pattern.dxf"
-    path.write_text(text, encoding="utf-8")
-    check_refusal(load, path)
-
-
-@FUZZ
-@given(data=byte_edits(SEEDS["clo-box_R10.dxf"].encode()))
-def test_byte_edits(tmp_path, data):
-    path = tmp_path / "pattern.dxf"
-    path.write_bytes(data)
-    check_refusal(load, path)
+    check()

@@ -5,18 +5,17 @@ from hypothesis import given
 
 from stitchswitch.layout.embroidery.file_summary import summarise
 
-from fuzzing import FUZZ, byte_edits, check_refusal
+from fuzz_edits import byte_edit
+from fuzzing import FUZZ, check_refusal, edited
 from helpers import EXTERNAL
-
-STAR = EXTERNAL / "embroidery"
 
 
 @pytest.mark.parametrize("name", ["Star.DST", "Star.JEF", "Star.EXP", "Star.pes"])
-def test_byte_edits(tmp_path, name):
-    seed = (STAR / name).read_bytes()
+def test_corrupted_copies(tmp_path, name):
+    seed = (EXTERNAL / "embroidery" / name).read_bytes()
 
     @FUZZ
-    @given(data=byte_edits(seed))
+    @given(data=edited(seed, byte_edit))
     def check(data):
         path = tmp_path / name
         path.write_bytes(data)

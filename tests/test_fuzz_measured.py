@@ -6,22 +6,15 @@ from hypothesis import given
 
 from stitchswitch.validation.measured import load_measurements
 
-from fuzzing import FUZZ, byte_edits, check_refusal, line_edits
+from fuzz_edits import byte_edit, line_edit
+from fuzzing import FUZZ, check_refusal, edited
 
 SEED = resources.files("stitchswitch").joinpath("data/measured_synthetic.csv").read_bytes()
 
 
 @FUZZ
-@given(text=line_edits(SEED.decode("utf-8")))
-def test_line_edits(tmp_path, text):
-    path = tmp_path / "measured.csv"
-    path.write_text(text, encoding="utf-8")
-    check_refusal(load_measurements, path)
-
-
-@FUZZ
-@given(data=byte_edits(SEED))
-def test_byte_edits(tmp_path, data):
+@given(data=edited(SEED, byte_edit, line_edit, line_edit))
+def test_corrupted_copies(tmp_path, data):
     path = tmp_path / "measured.csv"
     path.write_bytes(data)
     check_refusal(load_measurements, path)
