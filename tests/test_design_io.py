@@ -292,3 +292,21 @@ def test_schema_accepts_the_examples_and_rejects_bad_values():
             obj = base()
             _set(obj, path, value)
             assert list(validator.iter_errors(obj)), path
+
+
+@pytest.mark.parametrize("where, value, message", [
+    ("patches[0].centre_mm[0]", 10 ** 400, "$.patches[0].centre_mm[0]: 1000"),
+    ("patches[0].diameter_mm", 10 ** 400, "$.patches[0].diameter_mm: 1000"),
+    ("patches[0].id", "p" * 5000, "is 5000 characters long, more than 100"),
+    ("patches[0].piece", "q" * 5000, "$.patches[0].piece: 'qqq"),
+])
+def test_huge_values_are_one_short_message(tmp_path, where, value, message):
+    """An integer beyond the float range or a 5,000-character name: one short message, not an
+    OverflowError or the whole value."""
+    obj = base()
+    _set(obj, where, value)
+    path = tmp_path / "d.json"
+    path.write_text(json.dumps(obj))
+    with pytest.raises(InvalidInputError) as info:
+        load_design(path)
+    assert message in str(info.value) and len(str(info.value)) < 300

@@ -47,3 +47,60 @@ def test_dev_zero_as_a_material_gives_one_error(tmp_path):
         r = CliRunner().invoke(cli, args)
         assert r.exit_code == 2 and r.output.count("\n") == 1, r.output
         assert r.output.startswith("Error: ") and "'/dev/zero': larger than 16 MiB" in r.output
+
+
+def test_a_cell_over_128_kib_through_the_loaders_and_force_data(tmp_path):
+    """A huge cell is one short error naming the file, line and column (``force --data`` exits
+    2); a huge note of a measured row is kept."""
+    from importlib import resources
+
+    from click.testing import CliRunner
+
+    from stitchswitch.cli.main import cli
+    from stitchswitch.validation.measured import load_measurements
+
+    big = "9" * 200_000
+    force = tmp_path / "force.csv"
+    force.write_text(f"d_mm,fill,force_N,split\n40,0.8,{big}x,train\n50,0.8,0.5,val\n")
+    r = CliRunner().invoke(cli, ["force", "-d", "40", "-p", "0.8", "--data", str(force)])
+    assert r.exit_code == 2 and r.output.count("\n") == 1 and len(r.output) < 300
+    assert f"force data {str(force)!r}, line 2, column force_N: '999" in r.output
+    seed = resources.files("stitchswitch").joinpath("data/measured_synthetic.csv").read_text()
+    lines = seed.splitlines()
+    k = next(i for i, line in enumerate(lines) if not line.startswith("#")) + 1  # first data row
+    header = lines[k - 1].split(",")
+    cells = lines[k].split(",")
+    measured = tmp_path / "m.csv"
+    if "notes" in header:
+        cells[header.index("notes")] = "n" * 200_000
+        measured.write_text("\n".join(lines[:k] + [",".join(cells)] + lines[k + 1:]) + "\n")
+        assert load_measurements(measured).rows[0].notes == "n" * 200_000
+    cells = lines[k].split(",")
+    cells[header.index("h_mm")] = big
+    measured.write_text("\n".join(lines[:k] + [",".join(cells)] + lines[k + 1:]) + "\n")
+    with pytest.raises(InvalidInputError) as info:
+        load_measurements(measured)
+    assert len(str(info.value)) < 300 and f"line {k + 1}, column h_mm" in str(info.value)
+
+
+@pytest.mark.parametrize("value, message", [
+    ("1" * 5000, "$.w_b_emb: 111"), ("1" + "0" * 350, "$.w_b_emb: 100"),
+    ("[" * 50_000 + "]" * 50_000, "nested deeper than 32 levels")])
+def test_json_numbers_and_nesting_through_a_command(tmp_path, value, message):
+    """5,000-digit numbers, integers beyond the float range and deep nesting in a material
+    file: exit 2 and one line naming the file and the field."""
+    import json
+    from importlib import resources
+
+    from click.testing import CliRunner
+
+    from stitchswitch.cli.main import cli
+
+    material = json.loads(resources.files("stitchswitch").joinpath(
+        "data/default_material.json").read_text())
+    material["w_b_emb"] = "@@"
+    path = tmp_path / "m.json"
+    path.write_text(json.dumps(material).replace('"@@"', value))
+    r = CliRunner().invoke(cli, ["simulate", "--material", str(path)])
+    assert r.exit_code == 2 and r.output.count("\n") == 1 and len(r.output) < 300, r.output
+    assert r.output.startswith(f"Error: material file {str(path)!r}: ") and message in r.output
