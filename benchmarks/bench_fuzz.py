@@ -13,10 +13,16 @@ kind, shape or values). Each case is loaded once, in this process, with a
 * crash: the loader raised anything but ``InvalidInputError``;
 * bad message: an ``InvalidInputError`` of 300 characters or more (the file's path not
   counted) or one that does not name the file;
-* hang: the case took more than 10 s (the alarm fired).
+* hang: the case took more than 10 s (the alarm fired);
+* partial file: a command that failed left output behind.
+
+The CLI group runs a sample of corrupted files through the commands that read them
+(``import``, ``inspect``, ``check``, ``simulate --material``, ``force --data``, ``inverse
+--map``) with click's runner: exit code 2 must print exactly one ``Error:`` line (its message
+checked as above) and leave the output folder empty; a traceback is a crash.
 
 A loaded map is queried at a random point of its domain, with profiles (a map that loads must
-answer). Target: 0 crashes, 0 bad messages, 0 hangs over >= 10,000 cases. Cases are generated
+answer). Target: 0 crashes, 0 bad messages, 0 hangs, 0 partial files over >= 10,000 cases. Cases are generated
 from ``--seed``, so a run is repeatable; the first case of every distinct failure is written
 to ``--keep`` (default: not kept) for replay.
 
@@ -85,6 +91,60 @@ def _load_map(path):
     return dmap
 
 
+class PartialOutput(Exception):
+    """A command that failed left (part of) its output behind."""
+
+
+class BadErrorOutput(Exception):
+    """A command that exited 2 printed something else than one ``Error:`` line."""
+
+
+def _command(path: pathlib.Path, out: pathlib.Path) -> list[str]:
+    """The command that reads the case ``path`` (named after its seed), writing into ``out``."""
+    name = path.name
+    if name.endswith(".dxf") or name.endswith(".DXF"):
+        return ["import", str(path), "-o", str(out / "design.json")]
+    if name.endswith("design.json"):
+        return ["check", str(path), "--json"]
+    if name.endswith("material.json"):
+        return ["simulate", "--material", str(path), "--json"]
+    if name.endswith(".csv"):
+        return ["force", "-d", "40", "-p", "0.8", "--data", str(path), "--json"]
+    if name.endswith(".npz"):
+        return ["inverse", "--height", "10", "--count", "1", "--map", str(path), "--json"]
+    return ["inspect", str(path)]
+
+
+def run_cli(path: pathlib.Path):
+    """The command of ``path`` through click's runner: a crash re-raises its exception, exit
+    code 2 must print one ``Error:`` line and leave nothing in the output folder (an
+    ``InvalidInputError`` of that line is raised, for the message checks); 0 (and 1 for
+    ``check``: violations) are loads."""
+    from click.testing import CliRunner
+
+    from stitchswitch.cli.main import cli
+    from stitchswitch.errors import InvalidInputError
+
+    out = path.parent / "out"
+    out.mkdir(exist_ok=True)
+    for old in out.iterdir():
+        old.unlink()
+    args = _command(path, out)
+    result = CliRunner().invoke(cli, args)
+    if result.exception is not None and not isinstance(result.exception, SystemExit):
+        raise result.exception
+    if result.exit_code == 2:
+        left = sorted(p.name for p in out.iterdir())
+        if left:
+            raise PartialOutput(f"{args[0]} left {', '.join(left)}")
+        lines = result.output.strip().splitlines()
+        if len(lines) != 1 or not lines[0].startswith("Error: ") or "Traceback" in result.output:
+            raise BadErrorOutput(f"{args[0]}: {result.output[:120]!r}")
+        raise InvalidInputError(lines[0][len("Error: "):])
+    if result.exit_code not in (0, 1 if args[0] == "check" else 0):
+        raise BadErrorOutput(f"{args[0]} exited {result.exit_code}: {result.output[:120]!r}")
+
+
 def groups(tmp: pathlib.Path) -> dict:
     """name -> (loader, suffix, [(seed name, bytes, [edit functions])])."""
     from stitchswitch.layout.embroidery.export import supported_formats
@@ -130,6 +190,13 @@ def groups(tmp: pathlib.Path) -> dict:
         "embroidery": (summarise, None,
                        [(p.name, read(p), [byte_edit])
                         for p in sorted((EXTERNAL / "embroidery").iterdir())]),
+        "CLI": (run_cli, None,
+                [("clo-box_R10.dxf", read(EXTERNAL / "dxf" / "clo-box_R10.dxf"), [byte_edit, dxf]),
+                 ("Star.DST", read(EXTERNAL / "embroidery" / "Star.DST"), [byte_edit]),
+                 ("design.json", _design_seed(), [byte_edit, json_edit]),
+                 ("material.json", read(DATA / "default_material.json"), [byte_edit, json_edit]),
+                 ("force.csv", read(DATA / "force_synthetic.csv"), [byte_edit, csv]),
+                 ("map.npz", _map_seed(tmp), [byte_edit, map_edit])]),
     }
 
 
@@ -140,7 +207,7 @@ def _alarm(signum, frame):
 
 
 def run_case(load, path: pathlib.Path):
-    """('ok' | 'refused' | 'crash' | 'message' | 'hang', detail, seconds)."""
+    """('ok' | 'refused' | 'crash' | 'message' | 'hang' | 'partial', detail, seconds)."""
     from stitchswitch.errors import InvalidInputError
 
     signal.setitimer(signal.ITIMER_REAL, HANG_S)
@@ -150,6 +217,8 @@ def run_case(load, path: pathlib.Path):
         outcome, detail = "ok", ""
     except Hang:
         outcome, detail = "hang", "more than 10 s"
+    except PartialOutput as exc:
+        outcome, detail = "partial", str(exc)
     except InvalidInputError as exc:
         message = str(exc).replace(str(path), "<file>")
         if len(message) >= MAX_MESSAGE or "<file>" not in message and path.name not in message:
@@ -182,7 +251,7 @@ def main(argv=None) -> int:
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
         table = groups(tmp)
-        share = {"map npz": 0.07, "DXF": 0.1, "embroidery": 0.1}
+        share = {"map npz": 0.07, "DXF": 0.1, "embroidery": 0.1, "CLI": 0.05}
         rest = (1.0 - sum(share.values())) / (len(table) - len(share))
         t0 = time.perf_counter()
         for name, (load, suffix, seeds) in table.items():
@@ -191,12 +260,12 @@ def main(argv=None) -> int:
             for _ in range(n):
                 seed_name, seed, edits = rng.choice(seeds)
                 data = rng.choice(edits)(rng, seed)
-                path = tmp / ("case" + (suffix or pathlib.Path(seed_name).suffix))
+                path = tmp / ("case" + suffix if suffix else f"case-{seed_name}")
                 path.write_bytes(data)
                 outcome, detail, seconds = run_case(load, path)
                 counts[outcome] += 1
                 slowest = max(slowest, seconds)
-                if outcome in ("crash", "message", "hang"):
+                if outcome in ("crash", "message", "hang", "partial"):
                     key = (name, detail.split(":")[0] if outcome == "crash" else outcome)
                     if key not in failures:
                         failures[key] = {"group": name, "outcome": outcome, "seed": seed_name,
@@ -209,28 +278,29 @@ def main(argv=None) -> int:
             rows.append({"group": name, "cases": n, "loaded": counts["ok"],
                          "refused": counts["refused"], "crashes": counts["crash"],
                          "bad_messages": counts["message"], "hangs": counts["hang"],
-                         "slowest_s": slowest})
+                         "partial_files": counts["partial"], "slowest_s": slowest})
         elapsed = time.perf_counter() - t0
     total = {k: sum(r[k] for r in rows) for k in ("cases", "loaded", "refused", "crashes",
-                                                   "bad_messages", "hangs")}
-    target = (total["cases"] >= 10_000 and total["crashes"] == 0 and total["bad_messages"] == 0
-              and total["hangs"] == 0)
+                                                   "bad_messages", "hangs", "partial_files")}
+    target = total["cases"] >= 10_000 and not any(
+        total[k] for k in ("crashes", "bad_messages", "hangs", "partial_files"))
     result = {"seed": args.seed, "rows": rows, "total": total, "elapsed_s": elapsed,
               "failures": list(failures.values()), "target_met": target}
     if args.json:
         print(json.dumps(result, indent=1))
         return 0
     head = (f"{'group':<15}{'cases':>7}{'loaded':>8}{'refused':>9}{'crashes':>9}"
-            f"{'bad msg':>9}{'hangs':>7}{'slowest s':>11}")
+            f"{'bad msg':>9}{'hangs':>7}{'partial':>9}{'slowest s':>11}")
     print(head)
     print("-" * len(head))
     for r in rows + [dict(group="all", slowest_s=max(r["slowest_s"] for r in rows), **total)]:
         print(f"{r['group']:<15}{r['cases']:>7}{r['loaded']:>8}{r['refused']:>9}"
-              f"{r['crashes']:>9}{r['bad_messages']:>9}{r['hangs']:>7}{r['slowest_s']:>11.2f}")
+              f"{r['crashes']:>9}{r['bad_messages']:>9}{r['hangs']:>7}{r['partial_files']:>9}"
+              f"{r['slowest_s']:>11.2f}")
     print(f"{elapsed:.0f} s in all")
     for f in failures.values():
         print(f"  {f['group']}: {f['outcome']} ({f['seed']}): {f['detail']}")
-    print(f"target 0 crashes / 0 bad messages / 0 hangs on >= 10,000 cases: "
+    print(f"target 0 crashes / 0 bad messages / 0 hangs / 0 partial files on >= 10,000 cases: "
           f"{'PASS' if target else 'FAIL'}")
     return 0
 
