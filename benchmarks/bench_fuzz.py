@@ -111,7 +111,7 @@ def _command(path: pathlib.Path, out: pathlib.Path) -> list[str]:
     if name.endswith(".csv"):
         return ["force", "-d", "40", "-p", "0.8", "--data", str(path), "--json"]
     if name.endswith(".npz"):
-        return ["inverse", "--height", "10", "--count", "1", "--map", str(path), "--json"]
+        return ["inverse", "--height", "5", "--count", "1", "--map", str(path), "--json"]
     return ["inspect", str(path)]
 
 
@@ -140,6 +140,8 @@ def run_cli(path: pathlib.Path):
         lines = result.output.strip().splitlines()
         if len(lines) != 1 or not lines[0].startswith("Error: ") or "Traceback" in result.output:
             raise BadErrorOutput(f"{args[0]}: {result.output[:120]!r}")
+        if args[0] == "inverse" and "is not achievable" in lines[0]:
+            return                                   # a valid map's answer about the target
         raise InvalidInputError(lines[0][len("Error: "):])
     if result.exit_code not in (0, 1 if args[0] == "check" else 0):
         raise BadErrorOutput(f"{args[0]} exited {result.exit_code}: {result.output[:120]!r}")

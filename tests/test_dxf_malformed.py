@@ -90,3 +90,20 @@ def test_an_insert_of_a_missing_block(tmp_path, caplog):
     for replacement in ("AcDbBlockReference\n  2\nQ\n", "AcDbBlockReference\n"):
         (tmp_path / "q.dxf").write_text(text.replace("AcDbBlockReference\n  2\nP\n", replacement))
         assert "no closed outline found in model space" in refused(tmp_path / "q.dxf")
+
+
+def test_a_piece_name_with_a_control_character_names_the_file(tmp_path):
+    """Names follow the design file's rules (no control characters, at most 100 characters),
+    checked where they are read, so that the error names the DXF file."""
+    doc = ezdxf.new("R12")
+    blk = doc.blocks.new("FRONT_M")
+    blk.add_text("Piece Name: FR\x0cONT", dxfattribs={"layer": "1"})
+    blk.add_polyline2d([(0, 0), (100, 0), (100, 50), (0, 50)], close=True,
+                       dxfattribs={"layer": "1"})
+    doc.modelspace().add_blockref("FRONT_M", (0, 0))
+    doc.modelspace().add_text("Units: METRIC")
+    doc.saveas(tmp_path / "ctl.dxf")
+    message = refused(tmp_path / "ctl.dxf")
+    assert "piece 1 name: 'FR\\x0cONT' contains a control character (U+000C" in message
+    r = CliRunner().invoke(cli, ["import", str(tmp_path / "ctl.dxf"), "-o", str(tmp_path / "d.json")])
+    assert r.exit_code == 2 and "ctl.dxf: piece 1 name" in r.output

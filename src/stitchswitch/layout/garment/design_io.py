@@ -96,7 +96,7 @@ def _design(obj, path) -> Design:
 def _piece(obj, path) -> PieceSpec:
     jc.obj(obj, path, required=("name", "outline_mm"), optional=("size", "source"))
     name = jc.text(obj["name"], child(path, "name"), nonempty=True, printable=True)
-    size = jc.text(obj.get("size", ""), child(path, "size"))
+    size = jc.text(obj.get("size", ""), child(path, "size"), printable=True)
     source = jc.text(obj.get("source", ""), child(path, "source"))
     outline_path = child(path, "outline_mm")
     ring = _points(obj["outline_mm"], outline_path)

@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files import json_checks as jc
 from stitchswitch.files.shown import clip
 from stitchswitch.layout.garment.dxf.generic import GEOMETRY_ERRORS
 
@@ -100,6 +101,10 @@ def import_dxf(path, *, tolerance_mm: float = 0.1, snap_mm: float = 0.5,
                                 f"{clip(str(exc), 80)})") from None
     args = (tolerance_mm / scale, snap_mm / scale, unit, scale, str(path), MAX_EXTENT_MM / scale)
     raw = read_aama(doc, *args) if aama else read_generic(doc, *args)
+    with jc.reporting(str(path)):
+        for k, (name, size, _, _) in enumerate(raw, start=1):     # the design file's rules
+            jc.text(name, f"piece {k} name", printable=True)
+            jc.text(size, f"piece {k} size", printable=True)
     pieces = [Piece(name, size, ring * scale, str(path), _scaled(ann, scale))
               for name, size, ring, ann in raw]
     return ImportedPieces(pieces, repairs, "aama" if aama else "generic")
