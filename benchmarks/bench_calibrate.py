@@ -12,7 +12,6 @@ the validation MAE per quantity.
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import json
 import pathlib
 import sys
@@ -21,13 +20,6 @@ import time
 import numpy as np
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-
-
-def _generator():
-    spec = importlib.util.spec_from_file_location("gen", ROOT / "scripts" / "make_measured_dataset.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def main(argv=None) -> int:
@@ -42,12 +34,13 @@ def main(argv=None) -> int:
     from stitchswitch.reduced.calibration import evolution as cal
     from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
     from stitchswitch.validation.measured import load_measurements
+    from stitchswitch.validation.reference_truth import true_material
 
     data = load_measurements(ROOT / "src" / "stitchswitch" / "data" / "measured_synthetic.csv")
     train, val = data.split("train"), data.split("val")
     designs = [(r.diameter_mm, r.fill) for r in train]
     measured = data.keypoints("train")
-    true = _generator().true_material()
+    true = true_material()
     t = time.perf_counter()
     with make_executor(args.workers) as ex:
         result = cal.calibrate(designs, measured, DEFAULT_MATERIAL, maxiter=args.maxiter,

@@ -5,8 +5,9 @@ side photographs, but did not publish them. This script makes a stand-in with th
 generated FROM THE MODEL, so that calibration and validation have something to work on. Nothing
 in it is measured.
 
-* "True" material: ``TRUE_CHANGES`` applied to ``DEFAULT_MATERIAL`` (different from the default,
-  so a calibration started from the default has something to find).
+* "True" material: ``validation.reference_truth.true_material()``, the default material with
+  the factors of ``TRUE_FACTORS`` applied (different from the default, so a calibration
+  started from the default has something to find).
 * Train: the paper's grid, p in {0.6, 0.7, 0.8, 0.9, 1.0} x d in {20, 40, 60, 70, 90} mm.
   Validation: 28 designs, d uniform in [15, 100] mm (rounded to 0.1 mm), p uniform in
   [0.6, 1.0] (rounded to 0.01).
@@ -31,11 +32,9 @@ import numpy as np
 
 from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.reduced.calibration.evolution import predict_keypoints
-from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
+from stitchswitch.validation.reference_truth import describe, true_material
 
 SEED = 2027
-TRUE_CHANGES = {"w_b_emb": 14.0, "w_b_fab": 2.5, "k_r_emb": 1.6, "k_r_fab": 0.6,
-                "k_theta_emb": 0.8, "w_log": 0.1}
 QUANTITIES = ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm")
 SIGMA_MM = (2.3, 1.7, 1.6, 1.8, 1.2)
 TRAIN_FILL = (0.6, 0.7, 0.8, 0.9, 1.0)
@@ -43,10 +42,6 @@ TRAIN_D_MM = (20.0, 40.0, 60.0, 70.0, 90.0)
 N_VAL = 28
 DEFAULT_OUT = (pathlib.Path(__file__).resolve().parent.parent
                / "src" / "stitchswitch" / "data" / "measured_synthetic.csv")
-
-
-def true_material():
-    return DEFAULT_MATERIAL.replace(**TRUE_CHANGES)
 
 
 def dataset_text(noise: bool = True, seed: int = SEED) -> str:
@@ -66,7 +61,7 @@ def dataset_text(noise: bool = True, seed: int = SEED) -> str:
         kp = kp + np.vstack([eps_tr, eps_va])
     kp[:, [0, 2, 4]] = np.maximum(kp[:, [0, 2, 4]], 0.0)
     kp[:, [1, 3]] = np.maximum(kp[:, [1, 3]], 0.1)
-    changes = ", ".join(f"{k}={v:g}" for k, v in TRUE_CHANGES.items())
+    changes = describe(true_material())
     noise_text = ("noise sigma " + ", ".join(f"{q[:-3]} {s:g}" for q, s in zip(QUANTITIES, SIGMA_MM))
                   + " mm") if noise else "NO noise"
     lines = [

@@ -1,12 +1,11 @@
 """Measure how the keypoints depend on the compressive response of the fabric (docs/model.md,
 "Compression as physics"): the tables there are this script's output.
 
-1. The bare fabric's compressive stiffness with the barrier at zero length (the slack
-   regularization's form, ``tension_field`` with jam = 0): h as c_fab goes to zero.
-2. With a jamming stretch (jam = 0.5): the keypoints as the numerical floor goes to zero, the
-   largest change per decade over the paper's 25 calibration designs, and how many solves
-   certify.
-3. h against the jamming stretch (floor 1e-6).
+1. The printed model's limit: no jamming stretch (jam = 0), the barrier at zero length, h as
+   the bare fabric's compressive ratio c_fab goes to zero (floor 1e-12).
+2. The default material: the keypoints as the numerical floor goes to zero, the largest change
+   per decade over the paper's 25 calibration designs, and how many solves certify.
+3. h against the jamming stretch around the default's.
 
 Usage: python scripts/study_compression.py [--quick]
 """
@@ -18,19 +17,12 @@ import numpy as np
 
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
 from stitchswitch.reduced.calibration.designs import CALIBRATION_DESIGNS
-from stitchswitch.reduced.model.terms import ALL_TERMS, compression
 
 KEYS = ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm")
-C_EMB = 0.01      # the default material's compression_ratio, as the stitched mats' stiffness ratio
 
 
-def terms(fill, c_fab, jam, floor):
-    field = compression.tension_field(fill, C_EMB, c_fab, jam, floor)
-    return tuple(field if t is compression.TERM else t for t in ALL_TERMS)
-
-
-def keypoints(d, p, **kw):
-    sol = solve(Patch(d, p), DEFAULT_MATERIAL, terms=terms(p, **kw))
+def keypoints(d, p, **changes):
+    sol = solve(Patch(d, p), DEFAULT_MATERIAL.replace(**changes))
     return np.array([getattr(sol.keypoints, k) for k in KEYS]), sol.converged
 
 
@@ -43,27 +35,30 @@ def main() -> None:
     if args.quick:
         designs = shown
 
-    print("1. no jamming (jam = 0), floor 0: h (mm) as c_fab -> 0; '!' = not certified")
+    m = DEFAULT_MATERIAL
+    print(f"default material: c_emb {m.c_emb:.4g}, c_fab {m.c_fab:g}, jam {m.jam:.4g}, "
+          f"floor {m.compression_floor:g}")
+    print("1. no jamming (jam = 0), floor 1e-12: h (mm) as c_fab -> 0; '!' = not certified")
     values = (1e-2, 1e-3, 1e-4, 1e-5)
     print("design      " + "".join(f"{v:>10g}" for v in values))
     for d, p in shown:
-        row = [keypoints(d, p, c_fab=v, jam=0.0, floor=0.0) for v in values]
+        row = [keypoints(d, p, c_fab=v, jam=0.0, compression_floor=1e-12) for v in values]
         print(f"d {d:3.0f} p {p:.1f} " + "".join(f"{k[0]:9.2f}{' ' if ok else '!'}" for k, ok in row))
 
-    print("\n2. jam = 0.5, c_fab = 0: largest change of each keypoint (mm) per decade of the floor")
+    print("\n2. default material: largest change of each keypoint (mm) per decade of the floor")
     floors = (1e-5, 1e-6, 1e-7, 1e-8)
-    table = {f: [keypoints(d, p, c_fab=0.0, jam=0.5, floor=f) for d, p in designs] for f in floors}
+    table = {f: [keypoints(d, p, compression_floor=f) for d, p in designs] for f in floors}
     print("decade            " + "".join(f"{k:>8}" for k in KEYS) + "  certified (lower floor)")
     for a, b in zip(floors, floors[1:]):
         change = np.max([np.abs(x[0] - y[0]) for x, y in zip(table[a], table[b])], axis=0)
         ok = sum(y[1] for y in table[b])
         print(f"{a:g} -> {b:g}".ljust(18) + "".join(f"{v:8.4f}" for v in change) + f"  {ok}/{len(designs)}")
 
-    print("\n3. h (mm) against the jamming stretch (c_fab = 0, floor 1e-6)")
-    jams = (0.3, 0.5, 0.7)
+    print("\n3. h (mm) against the jamming stretch (default material otherwise)")
+    jams = tuple(round(m.jam + dj, 3) for dj in (-0.1, 0.0, 0.1))
     print("design      " + "".join(f"{j:>8g}" for j in jams))
     for d, p in shown:
-        row = [keypoints(d, p, c_fab=0.0, jam=j, floor=1e-6) for j in jams]
+        row = [keypoints(d, p, jam=j) for j in jams]
         print(f"d {d:3.0f} p {p:.1f} " + "".join(f"{k[0]:7.2f}{' ' if ok else '!'}" for k, ok in row))
 
 

@@ -84,7 +84,7 @@ def test_an_indefinite_wide_band_fails_where_the_full_elimination_does():
     assert banded.factor(ab, 0.0)[1] == _full_band_factor(ab, 0.0)[1] > 0
 
 
-@pytest.mark.parametrize("design", [(55.0, 1.0), (70.0, 0.8)])
+@pytest.mark.parametrize("design", [(40.0, 1.0), (70.0, 0.8)])
 def test_factor_and_solve_equal_the_full_band_ones_on_solver_states(design):
     """Real restricted Hessians along a solve, including iterations with flat stretches."""
     grid = make_grid(Patch(*design), DEFAULT_MATERIAL)

@@ -203,18 +203,23 @@ def test_bending_weight_per_hinge(d, fill):
 
 
 def test_scalar_coefficients_are_passed_through():
-    m = DISTINCT.replace(w_log=0.37, gamma_mm=4.5, compression_ratio=0.03)
+    m = DISTINCT.replace(w_log=0.37, gamma_mm=4.5, c_emb=0.03, c_fab=0.002, jam=0.4,
+                         compression_floor=1e-5)
     grid = make_grid(Patch(30.0, 0.5), m)
     assert grid.w_log == 0.37
     assert grid.gamma == pytest.approx(4.5 / grid.dr_mm, rel=1e-15)
-    assert grid.compression == 0.03
+    assert grid.jam == 0.4
+    n_in = grid.n_inside
+    np.testing.assert_allclose(grid.compression[:n_in], 0.03 * 0.25 + 0.002 * 0.75 + 1e-5, rtol=1e-14)
+    np.testing.assert_allclose(grid.compression[n_in:], 0.002 + 1e-5, rtol=1e-14)
     assert grid.bending_scale == pytest.approx((0.5 / grid.dr_mm) ** 2, rel=1e-15)
 
 
 # ---------------------------------------------------------------------------- read-only
 
 def _arrays(grid):
-    return {"lam": grid.lam, "k_r": grid.k_r, "k_theta": grid.k_theta, "w_b": grid.w_b}
+    return {"lam": grid.lam, "k_r": grid.k_r, "k_theta": grid.k_theta, "w_b": grid.w_b,
+            "compression": grid.compression}
 
 
 def test_arrays_are_read_only():
@@ -252,11 +257,10 @@ def test_with_lambda_scale(fill):
         assert scaled.n_nodes == grid.n_nodes
         assert scaled.n_inside == grid.n_inside
         assert scaled.dr_mm == grid.dr_mm
-        for name in ("k_r", "k_theta", "w_b"):
+        for name in ("k_r", "k_theta", "w_b", "compression"):
             np.testing.assert_array_equal(getattr(scaled, name), getattr(grid, name))
             assert not getattr(scaled, name).flags.writeable
-        assert (scaled.w_log, scaled.gamma, scaled.compression) == (
-            grid.w_log, grid.gamma, grid.compression)
+        assert (scaled.w_log, scaled.gamma, scaled.jam) == (grid.w_log, grid.gamma, grid.jam)
     # The original is not modified.
     np.testing.assert_allclose(grid.lam[:grid.n_inside], 1.0 + 0.7 * fill ** 2, rtol=1e-14)
 

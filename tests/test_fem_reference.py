@@ -16,8 +16,10 @@ def test_density_derivatives_match_finite_differences(hoop, nu):
                   rng.uniform(-1, 1, n), rng.uniform(-1, 1, n)])
     S = rng.uniform(0.5, 4, n)
     coef = dict(lam=np.where(S < 2, 1.5, 1.0), k_r=1.0, k_theta=0.7, w_b=10.0, w_log=0.3,
-                gamma=1.0, c=0.01, hoop=hoop, nu=nu)
+                gamma=1.0, c=0.01, jam=0.6, c_jam=0.8, hoop=hoop, nu=nu)
     f, g, H = density(q, S, coef)
+    l = np.hypot(q[1], q[2])
+    assert np.any(l < 0.6 * coef["lam"]) and np.any(l > coef["lam"])    # jammed and taut points
     eps = 1e-6
     for k in range(5):
         dq = np.zeros_like(q)

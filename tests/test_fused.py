@@ -22,8 +22,8 @@ def _state(grid, seed):
     return r, z - z[-1]
 
 
-@pytest.mark.parametrize("terms", [ALL_TERMS, variants.HOOP_NODE_AVERAGE_TERMS],
-                         ids=["default", "hoop_node_average"])
+@pytest.mark.parametrize("terms", [ALL_TERMS, variants.HOOP_NODE_AVERAGE_TERMS, variants.PAPER_INDEXING],
+                         ids=["default", "hoop_node_average", "paper_indexing"])
 @pytest.mark.parametrize("design", [(15.0, 0.6), (40.0, 0.8), (100.0, 1.0)])
 def test_fused_derivatives_equal_the_python_assembly(terms, design):
     grid = make_grid(Patch(*design), DEFAULT_MATERIAL)

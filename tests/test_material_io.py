@@ -58,7 +58,9 @@ def test_hash_is_sha256_of_the_saved_file_and_stable(tmp_path):
 
 
 def test_optional_fields_take_defaults(tmp_path):
-    assert load_material(write(tmp_path / "m.json", required())) == DEFAULT_MATERIAL
+    loaded = load_material(write(tmp_path / "m.json", required()))
+    assert loaded == Material(**required())
+    assert loaded.k_r_emb == DEFAULT_MATERIAL.k_r_emb and loaded.label == ""
 
 
 def test_shipped_default_material_equals_default():

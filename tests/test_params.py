@@ -9,7 +9,8 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, DIAMETER_RANGE_MM, Material, Patch
 
 STIFFNESSES = ("w_b_emb", "w_b_fab", "k_r_emb", "k_r_fab", "k_theta_emb", "k_theta_fab")
-FLOAT_FIELDS = STIFFNESSES + ("w_log", "gamma_mm", "eta", "dr_max_mm", "compression_ratio")
+FLOAT_FIELDS = STIFFNESSES + ("w_log", "c_emb", "c_fab", "jam", "c_jam", "gamma_mm", "eta", "dr_max_mm",
+                              "compression_floor", "domain_max_rb")
 
 
 def value_spellings(value):
@@ -168,16 +169,38 @@ def test_material_non_positive_dr_max(value):
     assert_names(info, "dr_max_mm", value)
 
 
-@pytest.mark.parametrize("value", [0, 0.0, -0.01, 1, 1.0, 1.5])
-def test_material_compression_ratio_outside_open_unit_interval(value):
+@pytest.mark.parametrize("field, value", [
+    ("compression_floor", 0), ("compression_floor", 0.0), ("compression_floor", -0.01),
+    ("compression_floor", 1.0), ("c_emb", -0.01), ("c_emb", 1.0), ("c_fab", -1e-9), ("c_fab", 1.5),
+    ("jam", -0.1), ("jam", 1.0)])
+def test_material_compressive_response_outside_its_interval(field, value):
     with pytest.raises(InvalidInputError) as info:
-        material(compression_ratio=value)
-    assert_names(info, "compression_ratio", value)
+        material(**{field: value})
+    assert_names(info, field, value)
 
 
-@pytest.mark.parametrize("value", [1e-9, 0.01, 0.999])
-def test_material_compression_ratio_accepted(value):
-    assert material(compression_ratio=value).compression_ratio == value
+@pytest.mark.parametrize("field, value", [
+    ("compression_floor", 1e-12), ("compression_floor", 0.999), ("c_emb", 0.0), ("c_emb", 0.5),
+    ("c_fab", 0.0), ("c_fab", 0.2), ("jam", 0.0), ("jam", 0.95)])
+def test_material_compressive_response_accepted(field, value):
+    changes = {field: value} | ({"c_fab": 0.01} if (field, value) == ("jam", 0.0) else {})
+    assert getattr(material(**changes), field) == value
+
+
+def test_material_without_jamming_or_knit_stiffness_has_no_minimizer():
+    with pytest.raises(InvalidInputError, match="^jam: 0.0 with c_jam"):
+        material(jam=0.0, c_fab=0.0)
+
+
+@pytest.mark.parametrize("value", [3, None, "tab\there", "x" * 301])
+def test_material_label_must_be_short_printable_text(value):
+    with pytest.raises(InvalidInputError, match="^label: "):
+        material(label=value)
+
+
+def test_material_huge_integer_is_not_a_number_error():
+    with pytest.raises(InvalidInputError, match="^w_log: "):
+        material(w_log=10 ** 400)
 
 
 @pytest.mark.parametrize("value", [300.5, 20.1, "300", None, float("nan"), float("inf"), [300]])
@@ -238,7 +261,7 @@ def test_replace_without_changes_is_equal():
 
 @pytest.mark.parametrize("field, value", [
     ("eta", 0.5), ("eta", 3.5), ("k_r_emb", 0.0), ("w_b_fab", -1.0), ("w_log", -0.1),
-    ("gamma_mm", 0.0), ("compression_ratio", 1.0), ("n_nodes", 19), ("n_nodes", True),
+    ("gamma_mm", 0.0), ("jam", 1.0), ("n_nodes", 19), ("n_nodes", True),
     ("n_nodes", 300.5), ("dr_max_mm", 0.0), ("k_theta_fab", float("nan")),
 ])
 def test_replace_validates(field, value):

@@ -8,11 +8,11 @@ import pytest
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.files.jsonsafe import json_safe
 from stitchswitch.reduced.calibration import sensitivity as sens
-from stitchswitch.reduced.calibration.evolution import PARAMS
+from stitchswitch.reduced.calibration.evolution import COEFFICIENTS, PARAMS
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
-TAUT = (70.0, 1.0)      # every segment taut: docs/model.md, the slack regularization
-SLACK = (40.0, 0.8)     # segments go slack: h depends on c
+TAUT = (70.0, 1.0)      # every segment taut: docs/model.md, compression as physics
+SLACK = (40.0, 0.8)     # segments go slack: h depends on the compressive response
 
 
 def _get(result, design, parameter, keypoint):
@@ -21,19 +21,20 @@ def _get(result, design, parameter, keypoint):
 
 
 def test_parameters_are_the_physical_float_fields():
-    assert sens.parameter_names() == PARAMS + ("gamma_mm", "eta", "compression_ratio")
+    assert sens.parameter_names() == COEFFICIENTS + ("c_emb", "c_fab", "jam", "c_jam", "gamma_mm", "eta")
+    assert set(PARAMS) < set(sens.parameter_names())
     everything = sens.parameter_names(include_numerical=True)
     assert set(everything) - set(sens.parameter_names()) == set(sens.NUMERICAL)
     assert "n_nodes" not in everything
 
 
-def test_compression_ratio_does_not_enter_a_taut_design_but_a_slack_one():
-    result = sens.sensitivity(DEFAULT_MATERIAL, [TAUT, SLACK], parameters=["compression_ratio"])
+def test_the_jamming_stretch_does_not_enter_a_taut_design_but_a_slack_one():
+    result = sens.sensitivity(DEFAULT_MATERIAL, [TAUT, SLACK], parameters=["jam"])
     for q in sens.KEYPOINTS:
-        taut = _get(result, TAUT, "compression_ratio", q)
+        taut = _get(result, TAUT, "jam", q)
         assert taut.flag == "" and abs(taut.dq_dlog_mm) < 1e-9 and abs(taut.elasticity) < 1e-9
-    slack = _get(result, SLACK, "compression_ratio", "h_mm")
-    assert slack.flag == "" and slack.elasticity > 0.1       # a softer compression flattens the dome
+    slack = _get(result, SLACK, "jam", "h_mm")
+    assert slack.flag == "" and slack.elasticity > 0.1       # later jamming: a taller dome
 
 
 def test_h_grows_with_the_pre_stretch_at_a_popped_design():
@@ -44,16 +45,16 @@ def test_h_grows_with_the_pre_stretch_at_a_popped_design():
 def test_scaling_all_seven_coefficients_changes_nothing():
     """The energy is homogeneous of degree one in the seven coefficients, so (Euler) their
     log-derivatives sum to zero for every keypoint; central differences leave O(step^2)."""
-    result = sens.sensitivity(DEFAULT_MATERIAL, [SLACK], 0.01, parameters=PARAMS)
+    result = sens.sensitivity(DEFAULT_MATERIAL, [SLACK], 0.01, parameters=COEFFICIENTS)
     for q in sens.KEYPOINTS:
-        slopes = [_get(result, SLACK, n, q).dq_dlog_mm for n in PARAMS]
+        slopes = [_get(result, SLACK, n, q).dq_dlog_mm for n in COEFFICIENTS]
         assert abs(sum(slopes)) < 1e-3 * sum(abs(s) for s in slopes), (q, slopes)
 
 
 def test_a_kink_is_flagged_and_left_out_of_the_summary():
-    """At d = 40 mm, p = 1.0 the overhang begins: h's slope in log eta is about 14 mm below
-    eta = 1.7 and 1.5 mm above it."""
-    design = (40.0, 1.0)
+    """At d = 90 mm, p = 0.7 the overhang begins: h's slope in log eta is about 75 mm below
+    eta = 1.7 (h 13.18 -> 16.92 mm, the steepest point becomes a neck) and -0.8 mm above it."""
+    design = (90.0, 0.7)
     result = sens.sensitivity(DEFAULT_MATERIAL, [design, SLACK], parameters=["eta"])
     kink = _get(result, design, "eta", "h_mm")
     assert kink.flag == sens.FLAG_NOT_SMOOTH and math.isnan(kink.dq_dlog_mm)

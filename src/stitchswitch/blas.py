@@ -5,6 +5,8 @@ that up, but a multithreaded OpenBLAS whose threads spin while the machine is bu
 down by 40x and more (measured: a 10 ms solve took 200-800 ms with other processes running).
 ``one_thread()`` limits the BLAS thread pools for the duration of a block; the controller is
 built once (its context costs about 0.04 ms), and the caller's own setting is restored after.
+The controller sees only the libraries loaded when it is built, so scipy's LAPACK (which the
+solvers call, and which carries its own OpenBLAS) is loaded first.
 """
 from __future__ import annotations
 
@@ -14,6 +16,7 @@ from functools import lru_cache
 
 @lru_cache(maxsize=1)
 def _controller():
+    import scipy.linalg  # noqa: F401  (loads scipy's own OpenBLAS before the controller looks)
     from threadpoolctl import ThreadpoolController
 
     return ThreadpoolController()

@@ -4,7 +4,8 @@ The continuum limit of the reduced model's energy (``docs/model.md``), per unit 
 everything in mm (the reduced energy in dR units is this integral divided by N dR^2):
 
     f = k_r lam S max(l - lam, 0)^2                 tension-only meridional membrane
-      + c k_r lam^3 S psi(l / lam)                  slack regularization (as the reduced model)
+      + c k_r lam^3 S psi(l / lam) + c_jam k_r lam S max(j lam - l, 0)^2
+                                                    compressive response (as the reduced model)
       + k_theta (r - lam S)^2 / (lam S)             circumferential membrane
       + w_log h(r - lam S; gamma)                   hardening (sign-corrected Eq. 5)
       + B r l (kappa_s^2 + H (kappa_t^2 + 2 nu kappa_s kappa_t))      bending
@@ -30,12 +31,14 @@ from stitchswitch.reduced.model.terms.hardening import h as hardening_h
 NQ = 5   # r, r', z', r'', z''
 
 
-def _psi(t):
-    ts = np.minimum(t, 1.0)
-    slack = t < 1.0
-    return (np.where(slack, 2.0 * (ts - 1.0 - np.log(ts)), 0.0),
-            np.where(slack, 2.0 * (1.0 - 1.0 / ts), 0.0),
-            np.where(slack, 2.0 / (ts * ts), 0.0))
+def _psi(s):
+    """psi(s) = 2 (s - 1 - ln s) for s < 1 (0 otherwise) and its first two derivatives; +inf
+    where s <= 0."""
+    slack = s < 1.0
+    ss = np.where(s > 0.0, np.minimum(s, 1.0), np.nan)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        v = np.where(s > 0.0, np.where(slack, 2.0 * (ss - 1.0 - np.log(ss)), 0.0), np.inf)
+        return (v, np.where(slack, 2.0 * (1.0 - 1.0 / ss), 0.0), np.where(slack, 2.0 / (ss * ss), 0.0))
 
 
 def _bending_monomials(hoop: float, nu: float):
@@ -80,7 +83,8 @@ def density(q, S, coef, hessian: bool = True):
     """f, df/dq (5, ...) and d2f/dq2 (5, 5, ...) at quadrature points.
 
     ``q``: (5, ...) values of r, r', z', r'', z''; ``S``: rest radius (mm); ``coef``: dict of
-    arrays/scalars lam, k_r, k_theta, w_b, w_log, gamma, c, hoop, nu (see module docstring)."""
+    arrays/scalars lam, k_r, k_theta, w_b, w_log, gamma, c, jam, c_jam, hoop, nu (see module
+    docstring)."""
     r, rp, zp, rpp, zpp = q
     lam, k_r = coef["lam"], coef["k_r"]
     l = np.sqrt(rp * rp + zp * zp)
@@ -91,9 +95,11 @@ def density(q, S, coef, hessian: bool = True):
     s = np.maximum(l - lam, 0.0)
     cw = coef["c"] * k_r * lam ** 3 * S
     psi, dpsi, d2psi = _psi(l / lam)
-    m = a * s * s + cw * psi
-    m1 = 2 * a * s + cw * dpsi / lam
-    m2 = 2 * a * (s > 0) + cw * d2psi / lam ** 2
+    aj = coef["c_jam"] * a
+    g = np.maximum(coef["jam"] * lam - l, 0.0)
+    m = a * s * s + cw * psi + aj * g * g
+    m1 = 2 * a * s + cw * dpsi / lam - 2 * aj * g
+    m2 = 2 * a * (s > 0) + cw * d2psi / lam ** 2 + 2 * aj * (g > 0)
 
     # hoop membrane and hardening: functions of r only
     eps = r - lam * S

@@ -95,7 +95,8 @@ class ShellModel:
         mix = fill_mixture(self.S < self.rb, patch.fill, material)
         self.coef = dict(
             lam=mix.lam, k_r=mix.k_r, k_theta=mix.k_theta, w_b=mix.w_b,
-            w_log=material.w_log, gamma=material.gamma_mm, c=material.compression_ratio,
+            w_log=material.w_log, gamma=material.gamma_mm, c=mix.compression, jam=material.jam,
+            c_jam=material.c_jam,
             hoop=1.0 if hoop_bending else 0.0, nu=float(poisson))
         self.rest_lam = self.coef["lam"]           # the design's rest metric (t = 1)
         n = b.N

@@ -16,7 +16,7 @@ from stitchswitch.reduced.calibration import evolution as cal
 from stitchswitch.reduced.model.material_io import canonical_json, load_material, material_hash
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
-FREE = tuple(n for n in cal.PARAMS if n != cal.SCALE_PARAM)
+FREE = cal.DEFAULT_FREE
 
 
 def _record(material, mse, data, settings, start_label, **state) -> dict:
@@ -24,7 +24,7 @@ def _record(material, mse, data, settings, start_label, **state) -> dict:
     return {
         "material": material.as_dict(), "material_hash": material_hash(material),
         "train_mse_mm2": mse, "free_parameters": list(FREE),
-        "fixed_parameters": {cal.SCALE_PARAM: getattr(material, cal.SCALE_PARAM)},
+        "fixed_parameters": {n: getattr(material, n) for n in cal.PARAMS if n not in FREE},
         "bounds": {k: list(v) for k, v in cal.BOUNDS.items()},
         "data": {"path": data.path, "sha256": data.sha256, "source": data.source,
                  "n_train": len(data.split("train"))},
@@ -61,8 +61,11 @@ def _write(out: pathlib.Path, record: dict) -> None:
 @options.json_opt
 def calibrate(data_path, material_path, maxiter, popsize, seed, workers, scheduler, resume, out,
               as_json):
-    """Fit the seven material coefficients to the training rows of DATA.csv.
+    """Fit the material to the training rows of DATA.csv.
 
+    Fitted: the seven coefficients but the overall scale k_theta_fab, the compressive ratios
+    of the stitched mats and of the bare knit (c_emb, c_fab), the jamming stretch jam and the
+    hardening limit gamma_mm, by differential evolution and a final least-squares polish.
     The objective is the mean squared error over the five keypoints (the paper's). The best
     point so far is written after every generation, so an interrupted run (Ctrl-C) leaves a
     usable material and can be continued with --resume.
@@ -119,7 +122,8 @@ def calibrate(data_path, material_path, maxiter, popsize, seed, workers, schedul
     click.echo(f"wrote {out} ({state}); train RMSE {rmse:.3f} mm over {len(train)} rows, "
                f"{result.generations} generations in {result.elapsed_s:.0f} s")
     for name in cal.PARAMS:
-        tag = " (fixed: overall scale)" if name == cal.SCALE_PARAM else ""
+        tag = (" (fixed: overall scale)" if name == cal.SCALE_PARAM
+               else " (fixed)" if name not in FREE else "")
         click.echo(f"  {name:12s} {getattr(result.material, name):10.4g}{tag}")
     weak = result.identifiability.get("weak_directions", [])
     if weak:

@@ -1,18 +1,33 @@
-"""Calibration of the material by differential evolution (paper, section 4).
+"""Calibration of the material by differential evolution (paper, section 4), then a local polish.
 
 The objective is the paper's: the mean squared error (mm^2) over the five keypoints
 (h, r_a, z_a, r_b, z_b) of the training rows, each predicted by a certified solve.
 
-Identifiability. The energy is homogeneous of degree one in the seven coefficients (the slack
-regularization is a ratio to k_r), so scaling all of them by one factor leaves every equilibrium
+Parameters (``PARAMS``): the paper's seven coefficients and the parameters of the model that
+move the keypoints by more than the measurement noise: the compressive stiffness ratios of the
+stitched mats ``c_emb`` and of the bare knit ``c_fab``, the jamming stretch ``jam`` and the
+hardening limit ``gamma_mm`` (docs/model.md, "Sensitivity").
+
+Identifiability. The energy is homogeneous of degree one in the seven coefficients (c_emb and
+c_fab are ratios to k_r), so scaling all of them by one factor leaves every equilibrium
 unchanged: **the overall scale is not identifiable from shapes**. The fit therefore holds
-``SCALE_PARAM`` (k_theta_fab) at its starting value and fits the other six relative to it.
+``SCALE_PARAM`` (k_theta_fab) at its starting value and fits the others relative to it.
 Weaker correlations are measured, not assumed: at the optimum, the Jacobian of the training
-keypoints with respect to the log-parameters gives singular values, and directions whose
+keypoints with respect to the search coordinates gives singular values, and directions whose
 singular value is below ``WEAK_RATIO`` times the largest are reported as poorly identified.
 
-Search space (documented bounds, ``BOUNDS``): log10 of w_b_emb, w_b_fab, k_r_emb, k_r_fab,
-k_theta_emb, and w_log on a linear scale (it may be 0).
+Search space (documented bounds, ``BOUNDS``): log10 of the stiffnesses, c_emb, c_fab and
+gamma_mm; w_log and jam on a linear scale (w_log may be 0). c_fab's lower bound 1e-3 keeps the
+bare knit's slack segments from being nearly free, which makes Newton's method several times
+slower (docs/model.md, "Compression as physics").
+
+The population is updated once per generation (scipy's "deferred" updating) on one worker as on
+many, so the fit does not depend on the number of workers (tests/test_calibration.py).
+
+Polish. Differential evolution ends near, not at, a minimum. From its best member a bounded
+trust-region least-squares fit of the keypoint residuals (``scipy.optimize.least_squares``,
+at most ``POLISH_EVALUATIONS`` objective evaluations) takes the last step; its result is kept
+only if it lowers the MSE.
 """
 from __future__ import annotations
 
@@ -25,19 +40,29 @@ import numpy as np
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.params import Material, Patch
 
-#: The seven calibrated coefficients (paper).
-PARAMS = ("w_b_emb", "w_b_fab", "k_r_emb", "k_r_fab", "k_theta_emb", "k_theta_fab", "w_log")
+#: The seven coefficients of the paper.
+COEFFICIENTS = ("w_b_emb", "w_b_fab", "k_r_emb", "k_r_fab", "k_theta_emb", "k_theta_fab", "w_log")
+#: Every parameter calibration may fit.
+PARAMS = COEFFICIENTS + ("c_emb", "c_fab", "jam", "gamma_mm")
 #: Held fixed: the overall scale of the energy is not identifiable.
 SCALE_PARAM = "k_theta_fab"
 #: Bounds of the free parameters: (low, high, scale) with scale "log" (log10) or "linear".
 BOUNDS = {
-    "w_b_emb": (1.0, 100.0, "log"),
-    "w_b_fab": (0.1, 20.0, "log"),
-    "k_r_emb": (0.1, 10.0, "log"),
-    "k_r_fab": (0.05, 5.0, "log"),
-    "k_theta_emb": (0.1, 10.0, "log"),
-    "w_log": (0.0, 0.5, "linear"),
+    "w_b_emb": (0.1, 100.0, "log"),
+    "w_b_fab": (0.02, 20.0, "log"),
+    "k_r_emb": (0.02, 10.0, "log"),
+    "k_r_fab": (0.005, 5.0, "log"),
+    "k_theta_emb": (0.05, 10.0, "log"),
+    "w_log": (0.0, 2.0, "linear"),
+    "c_emb": (1e-4, 0.3, "log"),
+    "c_fab": (1e-3, 0.1, "log"),
+    "jam": (0.1, 0.8, "linear"),
+    "gamma_mm": (0.5, 30.0, "log"),
 }
+#: What ``calibrate`` fits unless told otherwise: every parameter but the scale.
+DEFAULT_FREE = tuple(n for n in PARAMS if n != SCALE_PARAM)
+#: Budget of the local polish, in objective evaluations.
+POLISH_EVALUATIONS = 60
 WEAK_RATIO = 1e-2
 #: Penalty (mm^2) added per training design whose solve is not certified.
 UNCONVERGED_PENALTY = 100.0
@@ -80,12 +105,21 @@ class Objective:
     measured: np.ndarray
 
     def __call__(self, x) -> float:
+        res = self.residuals(x)
+        return float(np.mean(res ** 2))
+
+    def residuals(self, x) -> np.ndarray:
+        """Predicted minus measured keypoints (mm), flattened, with the penalty of the designs
+        whose solve is not certified spread over them (so mean(res^2) is the objective)."""
         try:
             material = _from_x(x, self.free, self.base)
         except InvalidInputError:
-            return 1e6
+            return np.full(self.measured.size, 1e3)
         pred, bad = predict_keypoints(material, self.designs)
-        return float(np.mean((pred - self.measured) ** 2) + UNCONVERGED_PENALTY * bad)
+        res = (pred - self.measured).ravel()
+        if bad:
+            res = np.sqrt(res ** 2 + UNCONVERGED_PENALTY * bad)
+        return res
 
 
 @dataclass(frozen=True)
@@ -129,19 +163,41 @@ def identifiability(objective: Objective, x: np.ndarray, step: float = 1e-3) -> 
     }
 
 
+def polish_fit(objective: Objective, x, f: float, bounds, max_evaluations: int = POLISH_EVALUATIONS):
+    """(x, objective, evaluations used) after a bounded least-squares polish from ``x``; the
+    start is returned unchanged unless the polish lowers the objective below ``f``."""
+    from scipy.optimize import least_squares
+
+    lo, hi = np.array([b[0] for b in bounds]), np.array([b[1] for b in bounds])
+    x = np.clip(np.asarray(x, dtype=float), lo, hi)
+    counter = {"n": 0}
+
+    def fun(v):
+        counter["n"] += 1
+        return objective.residuals(v)
+
+    fit = least_squares(fun, x, bounds=(lo, hi), method="trf", diff_step=1e-3, x_scale="jac",
+                        max_nfev=max(1, max_evaluations // (x.size + 1)))
+    polished = float(np.mean(fit.fun ** 2))
+    if polished < f:
+        return np.array(fit.x), polished, counter["n"]
+    return x, f, counter["n"]
+
+
 def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize: int = 10,
               seed: int = 0, executor=None, free=None, tol: float = 1e-6, x0=None,
-              callback=None, check_identifiability: bool = True) -> CalibrationResult:
+              callback=None, check_identifiability: bool = True, polish: bool = True) -> CalibrationResult:
     """Differential evolution (scipy) over the free parameters; see the module docstring.
 
     ``designs``: [(diameter_mm, fill)] of the training rows; ``measured``: (n, 5) keypoints.
     ``executor``: a map-like (``stitchswitch.executor``) for parallel evaluation.
     ``x0``: a starting point in the search space (resume from a checkpoint).
     ``callback(generation, best_material, best_mse)`` after every generation; it may raise
-    KeyboardInterrupt, which ends the search with the best point so far."""
+    KeyboardInterrupt, which ends the search with the best point so far.
+    ``polish``: finish with the local least-squares step (module docstring)."""
     from scipy.optimize import differential_evolution
 
-    free = tuple(free or [n for n in PARAMS if n != SCALE_PARAM])
+    free = tuple(free or DEFAULT_FREE)
     unknown = [n for n in free if n not in BOUNDS]
     if unknown:
         raise InvalidInputError(f"free parameters: {', '.join(unknown)} cannot be fitted "
@@ -167,9 +223,13 @@ def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize:
         res = differential_evolution(
             objective, bounds, maxiter=maxiter, popsize=popsize, seed=seed, tol=tol,
             x0=x_start, workers=executor if executor is not None else 1,
-            updating="deferred" if executor is not None else "immediate",
+            updating="deferred",
             polish=False, init="latinhypercube", callback=on_generation)
         best_x, best_f, message, nfev = res.x, float(res.fun), str(res.message), int(res.nfev)
+        if polish:
+            best_x, best_f, used = polish_fit(objective, best_x, best_f, bounds)
+            nfev += used
+            message += f"; polished ({used} evaluations)"
     except KeyboardInterrupt:
         interrupted = True
         best_x, best_f, message, nfev = state["best_x"], state["best_f"], "interrupted", -1

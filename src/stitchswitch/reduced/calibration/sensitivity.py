@@ -53,7 +53,7 @@ from stitchswitch.reduced.calibration.designs import CALIBRATION_DESIGNS
 from stitchswitch.reduced.model.params import Material, Patch
 
 #: Float fields of Material that set the discretization, not the physics.
-NUMERICAL = ("dr_max_mm", "domain_max_rb")
+NUMERICAL = ("dr_max_mm", "domain_max_rb", "compression_floor")
 KEYPOINTS = ("h_mm", "r_a_mm", "z_a_mm", "r_b_mm", "z_b_mm")
 
 DEFAULT_STEP = 0.05

@@ -57,7 +57,9 @@ class Grid:
     w_b: np.ndarray        # (N-2,) bending weight of hinge i (node i+1), material value
     w_log: float
     gamma: float           # hardening limit, dR units
-    compression: float     # slack regularization ratio
+    compression: np.ndarray  # (N-1,) compressive stiffness ratio c of each segment, floor included
+    jam: float             # jamming stretch: the knit resists compression past l / lambda = jam
+    c_jam: float           # the jammed knit's compressive stiffness / its tensile stiffness
     bending_scale: float   # (dR_max / dR)^2: makes the bending length independent of dR
 
     @property
@@ -76,7 +78,8 @@ class Grid:
         lam = 1.0 + t * (self.lam - 1.0)
         lam.setflags(write=False)
         return Grid(self.n_nodes, self.n_inside, self.dr_mm, lam, self.k_r, self.k_theta,
-                    self.w_b, self.w_log, self.gamma, self.compression, self.bending_scale)
+                    self.w_b, self.w_log, self.gamma, self.compression, self.jam, self.c_jam,
+                    self.bending_scale)
 
 
 #: Node spacing at which the bending weights are defined: the paper's dR_max. A constant, so
@@ -117,12 +120,15 @@ class FillMixture:
     k_r: np.ndarray
     k_theta: np.ndarray
     w_b: np.ndarray
+    compression: np.ndarray
 
 
 def fill_mixture(inside: np.ndarray, fill: float, material: Material) -> FillMixture:
     """The paper's fill-mixture law, weighted by p^2: lambda = 1 + (eta - 1) p^2 and
     k = k_emb p^2 + k_fab (1 - p^2) where ``inside``, lambda = 1 and k = k_fab elsewhere, for
-    k = k_r, k_theta, w_b. Shared by the grid and the shell reference (``fem_reference.shell``)."""
+    k = k_r, k_theta, w_b and the compressive ratio c (c_emb, c_fab), to which the numerical
+    ``compression_floor`` is added. Shared by the grid and the shell reference
+    (``fem_reference.shell``)."""
     p2 = fill ** 2
 
     def piecewise(emb: float, fab: float) -> np.ndarray:
@@ -131,7 +137,8 @@ def fill_mixture(inside: np.ndarray, fill: float, material: Material) -> FillMix
     return FillMixture(lam=np.where(inside, 1.0 + (material.eta - 1.0) * p2, 1.0),
                        k_r=piecewise(material.k_r_emb, material.k_r_fab),
                        k_theta=piecewise(material.k_theta_emb, material.k_theta_fab),
-                       w_b=piecewise(material.w_b_emb, material.w_b_fab))
+                       w_b=piecewise(material.w_b_emb, material.w_b_fab),
+                       compression=piecewise(material.c_emb, material.c_fab) + material.compression_floor)
 
 
 def make_grid(patch: Patch, material: Material) -> Grid:
@@ -154,6 +161,8 @@ def make_grid(patch: Patch, material: Material) -> Grid:
         w_b=_ro(mix.w_b[:-1]),
         w_log=material.w_log,
         gamma=material.gamma_mm / dr_mm,
-        compression=material.compression_ratio,
+        compression=_ro(mix.compression),
+        jam=material.jam,
+        c_jam=material.c_jam,
         bending_scale=(BENDING_REFERENCE_MM / dr_mm) ** 2,
     )

@@ -1,7 +1,9 @@
 """Material files: one JSON object whose keys are the fields of ``Material``.
 
-Fields with a default in ``Material`` (``gamma_mm``, ``eta``, ``n_nodes``, ``dr_max_mm``,
-``compression_ratio``) may be left out; the seven calibrated coefficients are required. Every
+Fields with a default in ``Material`` (the compressive response, ``gamma_mm``, ``eta``,
+``n_nodes``, ``dr_max_mm``, ``compression_floor``, ``domain_max_rb``, ``label``) may be left
+out; the seven calibrated coefficients are required. ``label`` is text, every other field a
+number. A file with the retired ``compression_ratio`` gets a message naming its replacement. Every
 problem with a file (unreadable, not JSON, not an object, a duplicate, unknown or missing field,
 a value that is not a number or that ``Material`` rejects) raises ``InvalidInputError`` with a
 one-line message naming the file and the JSON path of the field (``files.json_checks``), e.g.
@@ -29,6 +31,10 @@ from stitchswitch.reduced.model.params import Material
 
 __all__ = ["load_material", "save_material", "material_hash", "canonical_json",
            "default_material_path", "material_from_json"]
+
+#: What a file with the retired slack-regularization ratio is told.
+RETIRED = ("retired: the compressive response is now c_emb (stitched mats), c_fab (bare knit) and "
+           "jam (the jamming stretch); see docs/model.md, 'Compression as physics'")
 
 _FIELDS = {f.name: f for f in fields(Material)}
 _REQUIRED = tuple(name for name, f in _FIELDS.items()
@@ -68,10 +74,15 @@ def material_from_json(text: str, where: str = "material") -> Material:
     """Parse and validate the JSON text of a material; errors start with ``where``."""
     data = jc.loads(text, where)
     with jc.reporting(where):
+        if isinstance(data, dict) and "compression_ratio" in data:
+            jc.fail(child(jc.ROOT, "compression_ratio"), RETIRED)
         jc.obj(data, jc.ROOT, required=_REQUIRED, optional=_OPTIONAL,
                what="a material (an object of material fields)")
         for name, value in data.items():
-            jc.number(value, child(jc.ROOT, name))
+            if name == "label":
+                jc.text(value, child(jc.ROOT, name))
+            else:
+                jc.number(value, child(jc.ROOT, name))
         try:
             return Material(**data)
         except InvalidInputError as exc:          # "<field>: <problem>": placed at the field

@@ -19,6 +19,9 @@ from stitchswitch.errors import InvalidInputError
 #: The solvers of ``reduced.solvers.solve`` (here, so that the CLI can list them without loading them).
 SOLVERS = ("newton", "adam")
 
+#: Longest ``Material.label``.
+MAX_LABEL = 300
+
 #: Supported patch diameters, measured on the pre-stretched fabric (mm).
 DIAMETER_RANGE_MM = (10.0, 150.0)
 
@@ -28,7 +31,7 @@ def _finite(name: str, value: float) -> float:
         raise InvalidInputError(f"{name}: {value!r} is not a number")
     try:
         v = float(value)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise InvalidInputError(f"{name}: {value!r} is not a number") from None
     if not math.isfinite(v):
         raise InvalidInputError(f"{name}: {value!r} is not a finite number")
@@ -73,14 +76,20 @@ class Material:
     ``k_theta_emb, k_theta_fab`` circumferential membrane stiffnesses (Eq. 3), ``w_log`` the
     weight of the hardening term (Eq. 5, with the sign corrected, see ``terms/hardening.py``).
 
+    Compressive response (``terms/compression.py``, docs/model.md "Compression as physics"):
+    ``c_emb`` and ``c_fab`` are the ratios of compressive to tensile radial stiffness of the
+    stitched mats and of the bare knit (mixed by fill like the other coefficients; the bare knit
+    wrinkles, so c_fab is small), ``jam`` the stretch l / lambda at which the knit's loops jam,
+    ``c_jam`` the jammed knit's compressive stiffness as a ratio of its tensile one, and
+    ``compression_floor`` a purely numerical weight added to c that keeps the energy defined
+    where c = 0 (the keypoints converge as it goes to 0; tested).
+
     ``gamma_mm``: limit of the circumferential strain (Eq. 2, a length), where the fabric
-    hardens. ``eta``: pre-stretch in the hoop. ``n_nodes``: N. ``dr_max_mm``: largest node
-    spacing. ``domain_max_rb``: the fabric domain (N - 1) dR extends at most this many patch
+    hardens; calibrated. ``eta``: pre-stretch in the hoop. ``n_nodes``: N. ``dr_max_mm``: largest
+    node spacing. ``domain_max_rb``: the fabric domain (N - 1) dR extends at most this many patch
     radii R_b; a small patch gets a finer spacing instead of a larger domain, i.e.
     N_in >= (N - 1) / domain_max_rb (``discretization.n_inside``; docs/design-map.md).
-    ``compression_ratio``: the slack regularization (``terms/compression.py``), the
-    ratio of compressive to tensile radial stiffness near the rest length; 0 is the printed
-    model, which has no minimizer for most designs (``docs/model.md``).
+    ``label``: what the material is (where its values come from), free text kept in the file.
     """
 
     w_b_emb: float
@@ -90,16 +99,21 @@ class Material:
     k_theta_emb: float
     k_theta_fab: float
     w_log: float
+    c_emb: float = 1e-2
+    c_fab: float = 1e-2
+    jam: float = 0.5
+    c_jam: float = 1.0
     gamma_mm: float = 3.0
     eta: float = 1.7
     n_nodes: int = 300
     dr_max_mm: float = 0.5
-    compression_ratio: float = 1e-2
+    compression_floor: float = 1e-6
     domain_max_rb: float = 7.5
+    label: str = ""
 
     def __post_init__(self) -> None:
         for f in fields(self):
-            if f.name == "n_nodes":
+            if f.name in ("n_nodes", "label"):
                 continue
             object.__setattr__(self, f.name, _finite(f.name, getattr(self, f.name)))
         for name in ("w_b_emb", "w_b_fab", "k_r_emb", "k_r_fab", "k_theta_emb", "k_theta_fab"):
@@ -113,8 +127,20 @@ class Material:
             raise InvalidInputError(f"eta: {self.eta!r} is outside (1, 3]")
         if self.dr_max_mm <= 0:
             raise InvalidInputError(f"dr_max_mm: {self.dr_max_mm!r} must be > 0")
-        if not 0.0 < self.compression_ratio < 1.0:
-            raise InvalidInputError(f"compression_ratio: {self.compression_ratio!r} is outside (0, 1)")
+        for name in ("c_emb", "c_fab"):
+            if not 0.0 <= getattr(self, name) < 1.0:
+                raise InvalidInputError(f"{name}: {getattr(self, name)!r} is outside [0, 1)")
+        if not 0.0 <= self.jam < 1.0:
+            raise InvalidInputError(f"jam: {self.jam!r} is outside [0, 1)")
+        if not 0.0 < self.compression_floor < 1.0:
+            raise InvalidInputError(f"compression_floor: {self.compression_floor!r} is outside (0, 1)")
+        if not 0.0 <= self.c_jam <= 100.0:
+            raise InvalidInputError(f"c_jam: {self.c_jam!r} is outside [0, 100]")
+        if (self.jam == 0.0 or self.c_jam == 0.0) and self.c_fab == 0.0:
+            raise InvalidInputError(f"jam: {self.jam!r} with c_jam {self.c_jam!r} and c_fab 0 lets a bare "
+                                    "segment collapse (no minimizer); give jam and c_jam > 0 or c_fab > 0")
+        if not isinstance(self.label, str) or len(self.label) > MAX_LABEL or not self.label.isprintable():
+            raise InvalidInputError(f"label: must be printable text of at most {MAX_LABEL} characters")
         n = _integer("n_nodes", self.n_nodes)
         if not 20 <= n <= 20000:
             raise InvalidInputError(f"n_nodes: {n!r} is outside [20, 20000]")
@@ -135,15 +161,25 @@ class Material:
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
-#: Default material. NOT fitted to fabricated samples: chosen by hand so that the paper's
-#: qualitative findings appear (near-flat small sparse patches, h growing with d, a flatter
-#: "mushroom" profile at high fill, h of the paper's magnitude). See docs/model.md.
+#: Default material: the PAPER-MAGNITUDE fit (scripts/fit_default_material.py,
+#: ``reduced.calibration.magnitudes``) to the mean keypoints the paper's Table 1 implies and to
+#: its qualitative findings; NOT fitted to fabricated samples. See docs/model.md.
 DEFAULT_MATERIAL = Material(
-    w_b_emb=10.0,
-    w_b_fab=2.0,
-    k_r_emb=1.0,
-    k_r_fab=0.5,
-    k_theta_emb=1.0,
+    w_b_emb=2.692647593449125,
+    w_b_fab=1.4845294350780582,
+    k_r_emb=0.32145883141682646,
+    k_r_fab=0.12165910595471167,
+    k_theta_emb=0.8668297055569069,
     k_theta_fab=0.5,
-    w_log=0.05,
+    w_log=0.760060215739572,
+    c_emb=0.0032719193810795285,
+    c_fab=0.00527687672883796,
+    jam=0.23183198195438287,
+    gamma_mm=7.68956875517933,
+    label=(
+        "paper-magnitude default: fitted by stitchswitch's calibration "
+        "(scripts/fit_default_material.py) to the mean keypoints implied by the paper's "
+        'Table 1 over its 25 calibration designs (h 9.8, r_a 19.3, z_a 5.3, r_b 17.2, z_b '
+        '4.1 mm) and to its qualitative findings; NOT fitted to fabricated samples'
+    ),
 )

@@ -22,15 +22,27 @@ import math
 import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.model.terms import ALL_TERMS, bending, circumferential, compression, hardening, radial
+from stitchswitch.reduced.model.terms import (
+    ALL_TERMS,
+    bending,
+    boundary_ring,
+    circumferential,
+    compression,
+    hardening,
+    radial,
+)
 from stitchswitch.reduced.model.terms.segment import BANDWIDTH
 
-#: Array dimensions (-1: a scalar) of each default term's coefficients, in assembly order.
-LAYOUT = ((1, 1), (1, 1, 1), (1, 1), (1, -1, -1), (1, 2, 2))
+#: Array dimensions (-1: a scalar, "index": a 1-d integer array) of each default term's
+#: coefficients, in assembly order.
+LAYOUT = ((1, 1), (1, 1, 1, 1), (1, 1), (1, -1, -1), ("index", 1, 1, 1, -1), (1, 2, 2))
 
 
-def _prepared(value, ndim: int):
+def _prepared(value, ndim):
     """A coefficient as the compiled functions take it, or None if it has another shape."""
+    if ndim == "index":
+        a = np.ascontiguousarray(value)
+        return a.astype(np.int64) if a.ndim == 1 and a.dtype.kind in "iu" else None
     if ndim < 0:
         return float(value) if np.ndim(value) == 0 else None
     a = np.ascontiguousarray(value, dtype=float)
@@ -76,10 +88,12 @@ def energy(r, z, c):
     no_g, no_h = np.zeros(0), np.zeros((BANDWIDTH + 1, 0))
     total = 0.0
     total += radial._kernel(r, z, c[0][0], c[0][1], no_g, no_h, False, False)
-    total += compression._kernel(r, z, c[1][0], c[1][1], c[1][2], no_g, no_h, False, False)
+    total += compression._kernel(r, z, c[1][0], c[1][1], c[1][2], c[1][3], no_g, no_h, False, False)
     total += circumferential._kernel(r, z, c[2][0], c[2][1], no_g, no_h, False, False)
     total += hardening._kernel(r, z, c[3][0], c[3][1], c[3][2], no_g, no_h, False, False)
-    total += bending._energy(r, z, c[4][0])
+    total += boundary_ring._kernel(r, z, c[4][0], c[4][1], c[4][2], c[4][3], c[4][4], no_g, no_h,
+                                   False, False)
+    total += bending._energy(r, z, c[5][0])
     return total if math.isfinite(total) else math.inf
 
 
@@ -89,8 +103,10 @@ def derivatives(r, z, c, grad, hb, want_h):
     (6, 2N); return the energy (``assembly.Model.accumulate``)."""
     total = 0.0
     total += radial._kernel(r, z, c[0][0], c[0][1], grad, hb, True, want_h)
-    total += compression._kernel(r, z, c[1][0], c[1][1], c[1][2], grad, hb, True, want_h)
+    total += compression._kernel(r, z, c[1][0], c[1][1], c[1][2], c[1][3], grad, hb, True, want_h)
     total += circumferential._kernel(r, z, c[2][0], c[2][1], grad, hb, True, want_h)
     total += hardening._kernel(r, z, c[3][0], c[3][1], c[3][2], grad, hb, True, want_h)
-    total += bending._kernel(r, z, c[4][0], grad, hb, want_h, c[4][1], c[4][2])
+    total += boundary_ring._kernel(r, z, c[4][0], c[4][1], c[4][2], c[4][3], c[4][4], grad, hb, True,
+                                   want_h)
+    total += bending._kernel(r, z, c[5][0], grad, hb, want_h, c[5][1], c[5][2])
     return total

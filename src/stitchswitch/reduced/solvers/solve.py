@@ -96,8 +96,9 @@ def solve(patch: Patch, material: Material = DEFAULT_MATERIAL, *, solver: str = 
     ``solver="newton"`` (default): the certified projected Newton method, started from the
     released state (``continuation.released_state``: the flat hoop state with a small upward
     seed bump, the same start as the Adam baseline), or from ``warm_start`` (a neighbouring
-    design's Solution) if given. If that does not converge, the release continuation of the
-    rest metric is tried with the remaining budget. ``solver="adam"``: the paper's projected
+    design's Solution) if given, with at most half the iteration budget, then from the
+    released state. If that does not converge, the release continuation of the rest metric is
+    tried with the remaining budget. ``solver="adam"``: the paper's projected
     Adam with gradient clipping from the same released state; its result is certified the
     same way and is usually *not* converged. ``terms`` replaces the energy terms (Newton only;
     default ``terms.ALL_TERMS``): discretization variants and added effects. ``max_iter``
@@ -125,7 +126,8 @@ def _solve(patch: Patch, material: Material, *, solver: str, tol: float, max_ite
         result, used = None, 0
         if warm_start is not None:
             r0, z0 = _warm_profile(warm_start, grid)
-            result = newton.minimize(grid, r0, z0, tol=tol, max_iter=budget, terms=terms)
+            # at most half the budget: a warm start that fails leaves the cold start room
+            result = newton.minimize(grid, r0, z0, tol=tol, max_iter=budget // 2, terms=terms)
             used = result.iterations
             if not result.converged:
                 result = None

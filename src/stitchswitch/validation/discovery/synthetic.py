@@ -7,8 +7,8 @@ plus Gaussian noise with the per-quantity sigma of the synthetic reference datas
 (``scripts/make_measured_dataset.py``: h 2.3, r_a 1.7, z_a 1.6, r_b 1.8, z_b 1.2 mm), clipped
 and rounded like it.
 
-The true model is ``TRUE_MATERIAL`` (the reference dataset's true coefficients, without
-hardening) plus at most one hidden *source*:
+The true model is ``TRUE_MATERIAL`` (the reference datasets' true material,
+``validation.reference_truth``, without hardening) plus at most one hidden *source*:
 
 * a library effect at given values (``validation.discovery.effects``);
 * ``gravity_sag``: the control effect that is not in the library (each patch solved without it
@@ -30,12 +30,12 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.calibration.designs import CALIBRATION_DIAMETERS_MM, CALIBRATION_FILLS
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material, Patch
 from stitchswitch.validation.discovery.effects import LIBRARY, resolve
+from stitchswitch.validation.reference_truth import describe, true_material
 
 __all__ = ["TRUE_MATERIAL", "START_MATERIAL", "SIGMA_MM", "TRAIN_FILL", "TRAIN_D_MM", "N_VAL",
            "SOURCES", "draw_values", "paper_designs", "true_keypoints", "dataset_text"]
 
-TRUE_MATERIAL = DEFAULT_MATERIAL.replace(w_b_emb=14.0, w_b_fab=2.5, k_r_emb=1.6, k_r_fab=0.6,
-                                         k_theta_emb=0.8, w_log=0.0)
+TRUE_MATERIAL = true_material().replace(w_log=0.0)
 START_MATERIAL = DEFAULT_MATERIAL.replace(w_log=0.0)
 #: Noise of the synthetic reference dataset (scripts/make_measured_dataset.py, SIGMA_MM).
 SIGMA_MM = (2.3, 1.7, 1.6, 1.8, 1.2)
@@ -150,12 +150,13 @@ def dataset_text(source: str | None, values=(), *, seed: int, noise: bool = True
         truth = source + " " + ", ".join(f"{n}={v:g}" for n, v in zip(names, values))
     if material != TRUE_MATERIAL:
         truth += "; material changed: " + ", ".join(
-            f"{k}={v:g}" for k, v in material.as_dict().items() if v != getattr(TRUE_MATERIAL, k))
+            f"{k}={v:g}" for k, v in material.as_dict().items()
+            if k != "label" and v != getattr(TRUE_MATERIAL, k))
     lines = [
         f"# source: SYNTHETIC discovery dataset (scripts/make_discovery_dataset.py, seed {seed}, "
         f"model with one hidden source, {noise_text}); NOT measured",
         f"# hidden truth (not read by the workflow): {truth}; base material = default with "
-        "w_b_emb=14, w_b_fab=2.5, k_r_emb=1.6, k_r_fab=0.6, k_theta_emb=0.8, w_log=0",
+        f"{describe(TRUE_MATERIAL)}",
         "sample_id,d_mm,fill,h_mm,r_a_mm,z_a_mm,r_b_mm,z_b_mm,split",
     ]
     n_tr = len(train)

@@ -12,13 +12,16 @@ correction that turns the paper's quadrature into that rule, at the one node whe
     E_ring = 1/2 [ k_out eps_out^2 / (lambda_out R) - k_in eps_in^2 / (lambda_in R) ] / N
              + 1/2 w_log [ h(eps_out) - h(eps_in) ] / N,      eps = r_{N_in} - lambda R,
 
-so ``ALL_TERMS + (TERM,)`` is the model with the trapezoid rule (``variants.BOUNDARY_TRAPEZOID``).
+so the default ``ALL_TERMS`` (which includes it) is the model with the trapezoid rule, and
+``variants.PAPER_INDEXING`` (with ``OFF`` in its place) the printed quadrature.
 With it r_a converges at about second order (31.061 / 31.081 / 31.086 / 31.086 mm at the same
 design and N; tests/test_convergence.py). Each element is a (node, rest radius, hoop weight,
 hardening weight) with signed weights; the sum with the terms it corrects is the trapezoid rule,
 whose Hessian is that of a sum of convex terms.
 """
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 from numba import njit
@@ -55,4 +58,11 @@ def coefficients(grid):
             sign * grid.w_log / N, grid.gamma)
 
 
+def _no_elements(grid):
+    """No correction: the paper's quadrature (the same kernel, so the compiled path applies)."""
+    return (np.zeros(0, dtype=np.int64), np.zeros(0), np.zeros(0), np.zeros(0), grid.gamma)
+
+
 TERM = Term.from_kernel("boundary_ring", stencil=1, offset=0, coefficients=coefficients, kernel=_kernel)
+#: The term switched off: every node's ring takes its segment's values, as printed.
+OFF = dataclasses.replace(TERM, name="boundary_ring_off", coefficients=_no_elements)

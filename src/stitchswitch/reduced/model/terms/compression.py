@@ -1,48 +1,51 @@
-"""Slack regularization: a weak compressive stiffness with a barrier at zero length.
+"""The compressive response of the fabric: stitched mats resist compression, bare knit wrinkles
+until its loops jam.
 
 The printed model (Eq. 1) gives slack segments no stiffness at all. Its infimum then can have
 a segment outside the embroidery collapsed to zero length (a perfect fold): the energy keeps
-dropping as that length goes to 0 and no minimizer exists (docs/model.md). We add, per
-segment, with t = l / lambda and c = ``Material.compression_ratio``:
+dropping as that length goes to 0 and no minimizer exists (docs/model.md). A stitched triangle
+is a dense thread mat that resists compression in proportion to the stitched area; bare knit
+buckles out of its plane at almost no cost (a tension field) until its loops touch, and a
+jammed knit resists further compression like a solid. Per segment, with t = l / lambda:
 
-    E_c = (1/N) sum_i c k_r^(i) lambda_i^3 R_{i+1} psi(t_i),
-    psi(t) = 2 (t - 1 - ln t) for t < 1, 0 otherwise.
+    E_c = (1/N) sum_i k_r^(i) lambda_i R_{i+1} [ c_i lambda_i^2 psi(t_i)
+                                                  + c_jam (j lambda_i - l_i)_+^2 ],
+    psi(t) = 2 (t - 1 - ln t) for t < 1, 0 otherwise,
+    c = c_emb p^2 + c_fab (1 - p^2) inside, c_fab outside, plus ``compression_floor``,
 
-psi(1) = psi'(1) = 0 and psi''(1) = 2, so near the rest length E_c is the radial term with
-stiffness c k_r acting on compression; psi -> infinity as t -> 0, so no segment collapses
-and the problem has a true minimizer. c is a physical parameter, not a vanishing numerical
-device: where the equilibrium is taut everywhere the term is inactive and the keypoints do
-not depend on c, but where segments go slack h depends strongly on c (as c decreases the
-slack segments shorten and the dome flattens; tests/test_solver.py, docs/model.md). The
-energy is +inf for a segment of zero length.
-
-``tension_field`` is the same kernel with the compressive response as physics (a stiffness
-mixed by fill, a bare-fabric stiffness that may be zero, a jamming stretch and a numerical
-floor); it is not the default yet (docs/model.md, "Compression as physics").
+with j = ``Material.jam`` the jamming stretch and c_jam = ``Material.c_jam`` the jammed knit's
+compressive stiffness as a ratio of its tensile one (the second bracket is the radial term's
+form, mirrored at t = j). psi(1) = psi'(1) = 0 and psi''(1) = 2, so below the rest length the
+stiffness is c k_r; psi -> infinity as t -> 0, so no segment has zero length and a minimizer
+exists. The jamming penalty, not psi, is what holds a bare segment up where c_fab = 0: the
+floor only matters near t = 0, which the penalty keeps the equilibrium far from, so the keypoints
+converge as the floor goes to 0 (tests/test_compression.py). Without jamming (c_jam = 0) and
+c_fab = 0 it is the printed model's collapse (``Material`` refuses it). Both parts are smooth
+(the penalty C1 with a jump of its curvature at t = j, like the tension-only radial term at
+t = 1), so Newton's method sees no barrier to crawl along. The energy is +inf for a segment of
+zero length.
 """
 from __future__ import annotations
 
-import dataclasses
 import math
 
-import numpy as np
 from numba import njit
 
-from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.terms.protocol import Term
 from stitchswitch.reduced.model.terms.segment import add_segment, segment
 
 
 def coefficients(grid):
-    """(lambda, weight c k_r lambda^3 R_{i+1} / N, jamming stretch 0) per segment."""
-    return (grid.lam, grid.compression * grid.k_r * grid.lam ** 3 * grid.R[1:] / grid.n_nodes,
-            np.zeros(grid.lam.size))
+    """(lambda, weight c k_r lambda^3 R_{i+1} / N, jammed length j lambda, weight
+    c_jam k_r lambda R_{i+1} / N) per segment."""
+    base = grid.k_r * grid.lam * grid.R[1:] / grid.n_nodes
+    return grid.lam, grid.compression * grid.lam ** 2 * base, grid.jam * grid.lam, grid.c_jam * base
 
 
 @njit(cache=True)
-def _kernel(r, z, lam, w, jam, grad, hb, want_g, want_h):
-    """psi of s = (t - jam) / (1 - jam) per slack segment: the barrier sits at the jamming
-    stretch t = jam (0: at zero length, the slack regularization); s = t where jam = 0."""
+def _kernel(r, z, lam, w, jammed, wj, grad, hb, want_g, want_h):
+    """psi(l / lambda) weighted ``w`` and the jamming penalty wj (jammed - l)_+^2 per slack
+    segment."""
     E = 0.0
     for i in range(r.size - 1):
         vr, vz, l = segment(r, z, i)
@@ -51,42 +54,18 @@ def _kernel(r, z, lam, w, jam, grad, hb, want_g, want_h):
         t = l / lam[i]
         if t >= 1.0:
             continue
-        a = 1.0 - jam[i]
-        s = (t - jam[i]) / a
-        if s <= 0.0:
-            return math.inf
-        E += w[i] * 2.0 * (s - 1.0 - math.log(s))
+        E += w[i] * 2.0 * (t - 1.0 - math.log(t))
+        d1 = w[i] * 2.0 * (1.0 - 1.0 / t) / lam[i]
+        d2 = w[i] * 2.0 / (t * t * lam[i] * lam[i])
+        g = jammed[i] - l
+        if g > 0.0:
+            E += wj[i] * g * g
+            d1 -= 2.0 * wj[i] * g
+            d2 += 2.0 * wj[i]
         if want_g:
-            d1 = w[i] * 2.0 * (1.0 - 1.0 / s) / (a * lam[i])
-            d2 = w[i] * 2.0 / (s * s * a * a * lam[i] * lam[i])
             add_segment(grad, hb, i, d1, d2, vr, vz, l, want_h)
     return E
 
 
 TERM = Term.from_kernel("compression", stencil=2, offset=0, coefficients=coefficients, kernel=_kernel)
 
-
-def tension_field(fill: float, c_emb: float, c_fab: float, jam: float, floor: float = 1e-7) -> Term:
-    """The compressive response as physics instead of one ratio: a stitched triangle mat resists
-    compression, bare knit wrinkles (a tension field) until its loops jam.
-
-    Per segment, with the stiffness ratios mixed like the other coefficients,
-    c = c_emb p^2 + c_fab (1 - p^2) inside and c_fab outside, plus ``floor`` (a purely
-    numerical weight that keeps the barrier defined where c = 0), and the barrier at the
-    jamming stretch t = ``jam`` (l / lambda >= jam): psi of s = (t - jam) / (1 - jam) weighted
-    c (1 - jam)^2 k_r lambda^3 R / N, so that the stiffness at the rest length is c k_r as in
-    ``TERM``. With jam > 0 the problem keeps a minimizer as ``floor`` -> 0 (the barrier becomes
-    the hard constraint t >= jam) and the keypoints converge; with jam = 0 and c_fab = 0 a bare
-    segment next to the patch collapses instead (docs/model.md)."""
-    if not (0.0 <= jam < 1.0) or min(c_emb, c_fab, floor) < 0.0 or not 0.0 < fill <= 1.0:
-        raise InvalidInputError(f"tension_field: jam {jam!r} must be in [0, 1), c_emb {c_emb!r}, "
-                                f"c_fab {c_fab!r} and floor {floor!r} >= 0, fill {fill!r} in (0, 1]")
-    p2 = fill * fill
-
-    def coefficients(grid):
-        c = np.where(grid.inside, c_emb * p2 + c_fab * (1.0 - p2), c_fab) + floor
-        a = 1.0 - jam
-        return (grid.lam, c * a * a * grid.k_r * grid.lam ** 3 * grid.R[1:] / grid.n_nodes,
-                np.full(grid.lam.size, jam))
-
-    return dataclasses.replace(TERM, name="tension_field", coefficients=coefficients)

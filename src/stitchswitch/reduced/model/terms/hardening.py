@@ -12,7 +12,17 @@ applied to the circumferential strain e = eps_theta of Eq. 2 (dR units, like g =
 
 h(g) = g is finite, so h is no barrier, and log(1 - e/g) is undefined for e >= g. Past
 e* = (1 - CUTOFF) g we continue h by its second-order Taylor polynomial at e*, which is C2
-and convex: the stiffness stays at h''(e*) = 1 / (CUTOFF g) for every larger strain.
+and convex: the stiffness stays at h''(e*) = 1 / (CUTOFF g) for every larger strain. The
+continuation is a numerical safeguard for Newton's iterates, not physics: the limit gamma is
+calibrated, and no equilibrium of the default material reaches the cutoff anywhere on the design
+map (``limit_ratio``; tests/test_default_material.py).
+
+Why a displacement and not a strain. Eq. 2's eps_theta = r - lambda R is a length, so a large
+ring reaches the limit at a smaller strain than a small one. We keep the printed form and fit
+gamma with the other parameters: it is the paper's model, and with gamma fitted the term never
+reaches its limit, so the difference between the two forms is a smooth change of the hoop
+stiffness with d that only data on the stretch limit (which the keypoints do not resolve) could
+settle.
 """
 from __future__ import annotations
 
@@ -77,3 +87,10 @@ def with_weight(w_log: float, gamma_mm: float) -> Term:
         return grid.lam * grid.R[1:], gamma_mm / grid.dr_mm, w_log / grid.n_nodes
 
     return dataclasses.replace(TERM, name="hardening_extra", coefficients=coefficients)
+
+
+def limit_ratio(grid, r) -> float:
+    """The largest eps_theta / gamma over the nodes of a profile with radii ``r`` (dR units):
+    below 1 - CUTOFF, no part of the energy comes from the quadratic continuation."""
+    rest, gamma, _ = coefficients(grid)
+    return float(np.max((np.asarray(r, dtype=float)[1:] - rest) / gamma))
