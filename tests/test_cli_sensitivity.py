@@ -29,7 +29,7 @@ def test_table_has_a_row_per_parameter_and_keypoint():
     result = run()
     assert result.exit_code == 0, result.output
     lines = result.stdout.splitlines()
-    assert "2 (d x p), step exp(+-0.05)" in result.stdout and "50 in" in result.stdout
+    assert "2 (d x p), step exp(+-0.05)" in result.stdout and "54 in" in result.stdout
     rows = [line.split() for line in lines if line.split()[:1] and line.split()[0] in sens.parameter_names()]
     assert len(rows) == len(sens.parameter_names()) * len(sens.KEYPOINTS)
     taut_and_slack_c = [r for r in rows if r[:2] == ["jam", "h_mm"]][0]

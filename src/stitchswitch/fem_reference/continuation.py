@@ -21,6 +21,10 @@ exact minimizer), t = 1 the design. t is stepped from 0 to 1 and every stage run
   times its value at the previous stage: a large step can otherwise jump to another local
   minimum (on small patches, one with the meridian pinched at the pole). The last stage (t = 1)
   must converge, within ``FINAL_MAX_ITER`` iterations.
+* Snaps. Where the step has shrunk to ``MIN_STEP`` and the stage still fails, the followed
+  branch ends at a limit point (a fold of the equilibrium path: the sheet snaps). The stage is
+  then run once more with ``FINAL_MAX_ITER`` iterations, so that Newton can reach the branch the
+  sheet snaps to; it is accepted if it converges (and passes the stretch test).
 * Certificate: the residual of the last stage, and the lowest eigenvalue of the (scaled) free
   Hessian at the result (``lowest_eigenvalue``; > 0 is a local minimum, not only a stationary
   point).
@@ -111,7 +115,7 @@ def prestretch_continuation(model: ShellModel, *, tol: float = 1e-9) -> Continua
     t0 = time.perf_counter()
     x = model.flat_state()
     apex = model.n + model._value_dofs[0]
-    t, step, iterations, retried = 0.0, INITIAL_STEP, 0, False
+    t, step, iterations, retried, snapping = 0.0, INITIAL_STEP, 0, False, False
     stages: list[Stage] = []
     sol = None
     while True:
@@ -121,11 +125,12 @@ def prestretch_continuation(model: ShellModel, *, tol: float = 1e-9) -> Continua
         start = seeded(model, x)
         _, g, _ = stage_model.derivatives(start)
         start_residual = float(np.max(np.abs(g[model.free])))
-        sol = stage_model.solve(start, tol=tol, max_iter=FINAL_MAX_ITER if final else STAGE_MAX_ITER,
+        long_stage = final or snapping
+        sol = stage_model.solve(start, tol=tol, max_iter=FINAL_MAX_ITER if long_stage else STAGE_MAX_ITER,
                                 globalization="eigen")
         iterations += sol.iterations
         x_new = mirrored(model, sol._x)
-        ok = sol.converged or (not final and sol.residual < start_residual)
+        ok = sol.converged or (not long_stage and sol.residual < start_residual)
         ok = ok and bool(np.all(model.stretches(x_new) >= STRETCH_BOUND * model.stretches(x)))
         stages.append(Stage(t_next, sol.iterations, sol.residual, sol.converged, ok,
                             float(x_new[apex])))
@@ -135,11 +140,14 @@ def prestretch_continuation(model: ShellModel, *, tol: float = 1e-9) -> Continua
                 break
             if sol.converged and not retried:
                 step = min(STEP_GROWTH * step, MAX_STEP)
-            retried = False
+            retried = snapping = False
             continue
         retried = True
         if step <= MIN_STEP:
-            break
+            if snapping or final:
+                break
+            snapping = True          # a limit point: let Newton find the branch the sheet snaps to
+            continue
         step *= 0.5
     if sol._x is not x:                          # mirrored (or the path stalled): re-certify
         E, g, _ = model.derivatives(x)

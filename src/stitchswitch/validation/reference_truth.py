@@ -4,7 +4,9 @@ The shipped measured-keypoint dataset (scripts/make_measured_dataset.py) and the
 datasets (``validation.discovery.synthetic``) are generated from the model with a material that
 differs from the default, so that a calibration started from the default has something to
 find. It is the default material with each parameter of ``TRUE_FACTORS`` multiplied by its
-factor; the discovery datasets use it without hardening. Nothing here is measured.
+factor. The discovery datasets apply only the factors of the coefficients their fits free
+(``validation.discovery.space.BASE_FREE``), without hardening, so that the one hidden effect is
+the only thing their model lacks. Nothing here is measured.
 """
 from __future__ import annotations
 
@@ -17,9 +19,10 @@ TRUE_FACTORS = {"w_b_emb": 1.4, "w_b_fab": 1.25, "k_r_emb": 1.6, "k_r_fab": 1.2,
                 "w_log": 1.25, "c_emb": 1.5, "c_fab": 0.7, "jam": 1.1, "gamma_mm": 1.2}
 
 
-def true_material(base: Material = DEFAULT_MATERIAL) -> Material:
-    """``base`` with the factors of ``TRUE_FACTORS`` applied (labelled as synthetic)."""
-    changes = {k: f * getattr(base, k) for k, f in TRUE_FACTORS.items()}
+def true_material(base: Material = DEFAULT_MATERIAL, names=None) -> Material:
+    """``base`` with the factors of ``TRUE_FACTORS`` applied (those of ``names`` only, if
+    given), labelled as synthetic."""
+    changes = {k: f * getattr(base, k) for k, f in TRUE_FACTORS.items() if names is None or k in names}
     return base.replace(**changes, label="SYNTHETIC true material of the reference datasets: the default "
                                          "material times validation.reference_truth.TRUE_FACTORS")
 

@@ -7,8 +7,9 @@ plus Gaussian noise with the per-quantity sigma of the synthetic reference datas
 (``scripts/make_measured_dataset.py``: h 2.3, r_a 1.7, z_a 1.6, r_b 1.8, z_b 1.2 mm), clipped
 and rounded like it.
 
-The true model is ``TRUE_MATERIAL`` (the reference datasets' true material,
-``validation.reference_truth``, without hardening) plus at most one hidden *source*:
+The true model is ``TRUE_MATERIAL`` (the default material with the reference datasets' true
+factors of the coefficients the fits free, ``validation.reference_truth``, without hardening)
+plus at most one hidden *source*:
 
 * a library effect at given values (``validation.discovery.effects``);
 * ``gravity_sag``: the control effect that is not in the library (each patch solved without it
@@ -30,12 +31,13 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.calibration.designs import CALIBRATION_DIAMETERS_MM, CALIBRATION_FILLS
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material, Patch
 from stitchswitch.validation.discovery.effects import LIBRARY, resolve
+from stitchswitch.validation.discovery.space import BASE_FREE
 from stitchswitch.validation.reference_truth import describe, true_material
 
 __all__ = ["TRUE_MATERIAL", "START_MATERIAL", "SIGMA_MM", "TRAIN_FILL", "TRAIN_D_MM", "N_VAL",
            "SOURCES", "draw_values", "paper_designs", "true_keypoints", "dataset_text"]
 
-TRUE_MATERIAL = true_material().replace(w_log=0.0)
+TRUE_MATERIAL = true_material(names=BASE_FREE).replace(w_log=0.0)
 START_MATERIAL = DEFAULT_MATERIAL.replace(w_log=0.0)
 #: Noise of the synthetic reference dataset (scripts/make_measured_dataset.py, SIGMA_MM).
 SIGMA_MM = (2.3, 1.7, 1.6, 1.8, 1.2)
