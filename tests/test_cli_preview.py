@@ -19,9 +19,10 @@ def design_file(tmp_path, edge_patch=False):
     patches = [{"id": "big", "piece": "front", "centre_mm": [50, 60], "diameter_mm": 60, "fill": 1.0},
                {"id": "small", "piece": "front", "centre_mm": [110, 60], "diameter_mm": 40,
                 "fill": 0.8, "state": "down"}]
-    if edge_patch:      # 3 mm from the piece outline: a piece-edge error in the check
-        patches.append({"id": "edge", "piece": "front", "centre_mm": [185, 60],
-                        "diameter_mm": 40, "fill": 0.8})
+    if edge_patch:      # 3 mm from the piece outline: a piece-edge error in the check; a tall
+        # dome (h 15.6 mm), lit brightly enough in the top view to tell its colour by thresholds
+        patches.append({"id": "edge", "piece": "front", "centre_mm": [182, 60],
+                        "diameter_mm": 50, "fill": 1.0})
     obj = {"version": 1,
            "pieces": [{"name": "front", "outline_mm": [[0, 0], [200, 0], [200, 120], [0, 120]]}],
            "patches": patches}

@@ -101,7 +101,7 @@ def test_smoothness_violation_detects_an_isolated_outlier():
 
 def test_onset_is_explained(small_map):
     """A stencil that holds flat and popped designs is explained as the buckling onset."""
-    m = precompute.build(DEFAULT_MATERIAL, np.arange(15.0, 19.0), np.round(np.arange(0.50, 0.575, 0.01), 2))
+    m = precompute.build(DEFAULT_MATERIAL, np.arange(16.0, 20.0), np.round(np.arange(0.67, 0.755, 0.01), 2))
     flagged = m.flags != FLAG_SMOOTH
     assert flagged.any() and np.any(m.flags == FLAG_ONSET)
     assert set(np.unique(m.flags)) <= {FLAG_SMOOTH, FLAG_ONSET, FLAG_UNRESOLVED}    # none unexplained
