@@ -29,7 +29,8 @@ def main() -> None:
     print("| difference | " + " | ".join(f"{100 * (ev.means_mm[k] / magnitudes.TABLE1_MEANS_MM[k] - 1):+.1f} %"
                                          for k in magnitudes.KEYS) + " |")
     print(f"\nh(15 mm, 0.6) = {ev.flat_h_mm:.2f} mm; r_a - r_b at (90 mm, 1.0) = {ev.overhang_mm:.2f} mm; "
-          f"h(90, 0.8) - h(60, 0.8) = {ev.growth_mm:.2f} mm; h(100, 1.0) = {ev.pocket_h_mm:.2f} mm; largest eps_theta / gamma at the probed "
+          f"h(90, 0.8) - h(60, 0.8) = {ev.growth_mm:.2f} mm; h(100, 1.0) = {ev.pocket_h_mm:.2f} mm; "
+          f"largest eps_theta / gamma at the probed "
           f"designs {ev.limit_ratio:.3f}; uncertified solves {ev.uncertified}")
 
     print("\n| d \\ p | " + " | ".join(f"{p:g}" for p in FILLS) + " |")

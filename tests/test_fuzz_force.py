@@ -1,14 +1,10 @@
 """Fuzzing the switching-force CSV loader (``force --data``): corrupted copies of the shipped
 SYNTHETIC table load or give one short error naming the file.
 
-Known defect, marked strict xfail so that fixing it flips the mark: the loader
-(``force_model.parse_force_csv``) repeats a bad ``split`` cell or a repeated header cell in full
-(``{...!r}``) where every other loader shows it shortened (``files.shown.show``). The line
-edits can put such a cell there (``STITCHSWITCH_FUZZ_EXAMPLES=1000`` finds one); the 60 cases
-CI runs do not."""
+A bad ``split`` cell or a repeated header cell is shown shortened (``files.shown.show``), like
+every other loader's values; the line edits can put such a cell there."""
 from importlib import resources
 
-import pytest
 from hypothesis import given
 
 from stitchswitch.reduced.design_space.force_model import load_force_csv
@@ -35,7 +31,6 @@ def test_line_edits(tmp_path, data):
     check_refusal(load_force_csv, path)
 
 
-@pytest.mark.xfail(strict=True, reason="parse_force_csv repeats a long split cell in full")
 def test_a_long_split_value_is_shortened(tmp_path):
     path = tmp_path / "force.csv"
     path.write_text("d_mm,fill,force_N,split\n40,0.8,0.5," + "x" * 10_000 + "\n")

@@ -34,6 +34,7 @@ from importlib import resources
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.shown import show
 from stitchswitch.files.textio import csv_number, csv_records, read_text
 from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM
 
@@ -159,7 +160,7 @@ def _sample(fields_: dict[str, str], where: str) -> ForceSample:
     if f < 0.0:
         raise InvalidInputError(f"{where}, column force_N: {f:g} is negative")
     if fields_["split"] not in SPLITS:
-        raise InvalidInputError(f"{where}, column split: {fields_['split']!r} is not train or val")
+        raise InvalidInputError(f"{where}, column split: {show(fields_['split'])} is not train or val")
     return ForceSample(d, p, f, fields_["split"], fields_.get("sample_id", ""))
 
 
@@ -172,11 +173,11 @@ def parse_force_csv(text: str, name: str = "<text>") -> tuple[list[ForceSample],
         if header is None:
             missing = [c for c in REQUIRED_COLUMNS if c not in cells]
             if missing:
-                raise InvalidInputError(f"{where}: header has no column {missing[0]!r} "
+                raise InvalidInputError(f"{where}: header has no column {show(missing[0])} "
                                         f"(need {', '.join(REQUIRED_COLUMNS)})")
             dup = next((c for c in cells if cells.count(c) > 1), None)
             if dup is not None:
-                raise InvalidInputError(f"{where}: column {dup!r} appears twice in the header")
+                raise InvalidInputError(f"{where}: column {show(dup)} appears twice in the header")
             header = cells
             continue
         if len(cells) != len(header):

@@ -12,9 +12,11 @@ hardening limit ``gamma_mm`` is a length, both converted to the design's spacing
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, fields
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.shown import clip
 
 #: The solvers of ``reduced.solvers.solve`` (here, so that the CLI can list them without loading them).
 SOLVERS = ("newton", "adam")
@@ -26,22 +28,31 @@ MAX_LABEL = 300
 DIAMETER_RANGE_MM = (10.0, 150.0)
 
 
+def _shown(value) -> str:
+    """A bad value as a message shows it: its repr, shortened (a huge number or a long text)."""
+    try:
+        text = repr(value)
+    except ValueError:                    # an int too long for repr
+        return f"an integer of more than {sys.get_int_max_str_digits()} digits"
+    return clip(text)
+
+
 def _finite(name: str, value: float) -> float:
     if isinstance(value, bool):
-        raise InvalidInputError(f"{name}: {value!r} is not a number")
+        raise InvalidInputError(f"{name}: {_shown(value)} is not a number")
     try:
         v = float(value)
     except (TypeError, ValueError, OverflowError):
-        raise InvalidInputError(f"{name}: {value!r} is not a number") from None
+        raise InvalidInputError(f"{name}: {_shown(value)} is not a number") from None
     if not math.isfinite(v):
-        raise InvalidInputError(f"{name}: {value!r} is not a finite number")
+        raise InvalidInputError(f"{name}: {_shown(value)} is not a finite number")
     return v
 
 
 def _integer(name: str, value) -> int:
     if isinstance(value, bool) or not isinstance(value, int) and not (
             isinstance(value, float) and value.is_integer()):
-        raise InvalidInputError(f"{name}: {value!r} is not an integer")
+        raise InvalidInputError(f"{name}: {_shown(value)} is not an integer")
     return int(value)
 
 
@@ -143,7 +154,7 @@ class Material:
             raise InvalidInputError(f"label: must be printable text of at most {MAX_LABEL} characters")
         n = _integer("n_nodes", self.n_nodes)
         if not 20 <= n <= 20000:
-            raise InvalidInputError(f"n_nodes: {n!r} is outside [20, 20000]")
+            raise InvalidInputError(f"n_nodes: {_shown(n)} is outside [20, 20000]")
         object.__setattr__(self, "n_nodes", n)
         if not 2.0 <= self.domain_max_rb <= 1000.0:
             raise InvalidInputError(f"domain_max_rb: {self.domain_max_rb!r} is outside [2, 1000]")
