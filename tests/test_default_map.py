@@ -5,7 +5,12 @@ import pytest
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
 from stitchswitch.reduced.design_space import smoothness as map_check
 from stitchswitch.reduced.design_space.cache import default_map, map_for
-from stitchswitch.reduced.design_space.design_map import FLAG_ONSET, FLAG_SMOOTH, FLAG_UNEXPLAINED
+from stitchswitch.reduced.design_space.design_map import (
+    FLAG_BRANCH,
+    FLAG_ONSET,
+    FLAG_SMOOTH,
+    FLAG_UNEXPLAINED,
+)
 from stitchswitch.reduced.design_space.precompute import DEFAULT_DIAMETERS_MM, DEFAULT_FILLS
 from stitchswitch.reduced.model.material_io import material_hash
 
@@ -25,38 +30,51 @@ def test_default_map_is_for_the_default_material_and_grid(dmap):
     assert map_for(DEFAULT_MATERIAL) is dmap
 
 
+#: How far two certified solves of one design on the same branch may put the apex: the default
+#: material's equilibria have a soft mode that moves h while the energy stays put. Measured over
+#: the whole default map, warm-started map against cold direct solve: the energies agree to
+#: 2.5e-16, r_b to 1e-6 mm, h only to 3.3e-5 mm (304 of 4,386 points beyond 1e-6 mm).
+SOFT_H_MM = 1e-4
+
+
 @pytest.mark.parametrize("i, j", [(0, 0), (10, 25), (40, 7), (85, 50), (60, 33)])
 def test_default_map_matches_the_current_model(dmap, i, j):
     sol = solve(Patch(dmap.diameter_mm[i], dmap.fill[j]))
-    assert dmap.h_mm[i, j] == pytest.approx(sol.keypoints.h_mm, abs=1e-6)
+    assert dmap.energy[i, j] == pytest.approx(sol.energy, rel=1e-12, abs=1e-15)
+    assert dmap.h_mm[i, j] == pytest.approx(sol.keypoints.h_mm, abs=SOFT_H_MM)
     assert dmap.r_b_mm[i, j] == pytest.approx(sol.keypoints.r_b_mm, abs=1e-6)
 
 
 def test_where_the_warm_started_map_differs_from_a_direct_solve_it_is_lower(dmap):
-    """The row d = 23 mm crosses the onset. Just past it, at p = 0.72, the cold direct solve
-    can end flat (it did with the dependency versions the map was built with; with numpy 2.4 /
-    scipy 1.17 it reaches the popped state too), while the map, following the popped branch along
-    the fill, holds the popped state. Wherever the two differ the map's energy is the lower, and
-    they can differ only there: everywhere else on the row they agree."""
-    i = int(np.flatnonzero(dmap.diameter_mm == 23.0)[0])
+    """The row d = 54 mm crosses the band of fills where two popped branches coexist (the map's
+    branch-change points, d 36-99 mm). Followed along the fill, the map holds the lower branch
+    up to p = 0.83; the cold direct solve there reaches the upper one (h 15.23 against
+    11.70 mm). Wherever the two differ the map's energy must be the lower (the map is meant to
+    be the better of the two), and they can differ only there: everywhere else on the row they
+    agree (to the soft mode, ``SOFT_H_MM``)."""
+    i = int(np.flatnonzero(dmap.diameter_mm == 54.0)[0])
     differ = []
     for j, p in enumerate(dmap.fill):
-        sol = solve(Patch(23.0, float(p)))
-        if abs(sol.keypoints.h_mm - dmap.h_mm[i, j]) > 1e-6:
+        sol = solve(Patch(54.0, float(p)))
+        if abs(sol.keypoints.h_mm - dmap.h_mm[i, j]) > SOFT_H_MM:
             differ.append(float(p))
-            assert dmap.energy[i, j] < sol.energy
-    assert set(differ) <= {0.72}
+            assert dmap.energy[i, j] < sol.energy, (float(p), dmap.energy[i, j], sol.energy)
+    assert set(differ) <= {0.83}
 
 
 def test_every_unsmooth_point_is_flagged_and_explained(dmap):
     bad = map_check.violations(dmap.h_mm)
     assert np.array_equal(bad, dmap.flags != FLAG_SMOOTH)
-    assert not np.any(dmap.flags == FLAG_UNEXPLAINED)
-    # with the small-patch refinement (docs/design-map.md) nothing is under-resolved: every
-    # flagged point is the buckling onset, a genuine change of branch (flat -> popped)
-    assert np.all(dmap.flags[bad] == FLAG_ONSET)
-    d = dmap.diameter_mm[np.nonzero(bad)[0]]
-    assert d.size == 0 or d.max() <= 25.0          # only near the onset of the small patches
+    assert not np.any(dmap.flags == FLAG_UNEXPLAINED), [
+        (float(dmap.diameter_mm[i]), float(dmap.fill[j]))
+        for i, j in zip(*np.nonzero(dmap.flags == FLAG_UNEXPLAINED))]
+    # with the small-patch refinement (docs/design-map.md) nothing is under-resolved: a flagged
+    # point is the buckling onset (flat -> popped) of the small patches, or a change between
+    # the two popped branches that coexist across a band of larger patches
+    onset = dmap.flags == FLAG_ONSET
+    assert np.all(onset[bad] | (dmap.flags[bad] == FLAG_BRANCH))
+    d = dmap.diameter_mm[np.nonzero(onset)[0]]
+    assert d.size == 0 or d.max() <= 30.0          # the onset only for the small patches
 
 
 def test_query_accuracy_against_direct_solves(dmap):
@@ -87,4 +105,6 @@ def test_coarse_map_for_another_material_is_built_once_and_cached(tmp_path, monk
     assert np.array_equal(map_for(other, coarse=True).h_mm, m.h_mm)
     assert map_for(DEFAULT_MATERIAL, coarse=True) is default_map()     # the shipped map wins
     i, j = 5, 6                                                        # d 40, p 0.8
-    assert m.h_mm[i, j] == pytest.approx(solve(Patch(40.0, 0.8), other).keypoints.h_mm, abs=1e-9)
+    sol = solve(Patch(40.0, 0.8), other)
+    assert m.energy[i, j] == pytest.approx(sol.energy, rel=1e-12, abs=1e-15)
+    assert m.h_mm[i, j] == pytest.approx(sol.keypoints.h_mm, abs=SOFT_H_MM)
