@@ -33,7 +33,7 @@ def test_default_map_is_for_the_default_material_and_grid(dmap):
 #: How far two certified solves of one design on the same branch may put the apex: the default
 #: material's equilibria have a soft mode that moves h while the energy stays put. Measured over
 #: the whole default map, warm-started map against cold direct solve: the energies agree to
-#: 2.5e-16, r_b to 1e-6 mm, h only to 3.3e-5 mm (304 of 4,386 points beyond 1e-6 mm).
+#: 2.5e-16, r_b to 1.6e-8 mm, h only to 3.3e-5 mm (304 of 4,386 points beyond 1e-6 mm).
 SOFT_H_MM = 1e-4
 
 
