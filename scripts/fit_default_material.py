@@ -16,12 +16,18 @@ import json
 
 from stitchswitch.executor import make_executor
 from stitchswitch.reduced.calibration import magnitudes
+from stitchswitch.reduced.calibration.evolution import COEFFICIENTS, SCALE_PARAM
 from stitchswitch.reduced.model.material_io import canonical_json
 from stitchswitch.reduced.model.params import Material
 
 #: The starting point: the package's hand-chosen material before the fit.
 START = Material(w_b_emb=10.0, w_b_fab=2.0, k_r_emb=1.0, k_r_fab=0.5, k_theta_emb=1.0,
                  k_theta_fab=0.5, w_log=0.05, c_emb=0.01, c_fab=0.01, jam=0.5, gamma_mm=3.0)
+
+#: What the fit frees: the coefficients but the scale, and the compressive response and
+#: hardening limit; c_jam is held at 1 (the jammed knit as stiff as in tension), which the five
+#: means cannot tell from jam.
+FREE = tuple(n for n in COEFFICIENTS if n != SCALE_PARAM) + ("c_emb", "c_fab", "jam", "gamma_mm")
 
 LABEL = ("paper-magnitude default: fitted by stitchswitch's calibration (scripts/"
          "fit_default_material.py) to the mean keypoints implied by the paper's Table 1 over its 25 "
@@ -37,7 +43,8 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     with make_executor(args.workers) as ex:
         fit = magnitudes.fit_magnitudes(START, maxiter=args.maxiter, popsize=args.popsize, seed=0,
-                                        executor=ex if args.workers > 1 else None, label=LABEL)
+                                        executor=ex if args.workers > 1 else None, free=FREE,
+                                        label=LABEL)
     print(canonical_json(fit.material), end="")
     ev = fit.evaluation
     print(json.dumps({"objective": fit.objective, "evaluations": fit.evaluations,

@@ -92,9 +92,10 @@ def test_synthetic_dataset_is_reproducible_and_labelled(tmp_path):
     assert len(data.split("train")) == 25 and len(data.split("val")) == 28 and data.synthetic
 
 
+@pytest.mark.slow
 def test_recovers_the_full_parameter_set_from_noise_free_data():
-    """Every default-free parameter (the coefficients but the scale, c_emb, c_fab, jam and
-    gamma_mm) fitted at once to the noise-free keypoints of the reference dataset's true
+    """Every default-free parameter (the coefficients but the scale, c_emb, c_fab, jam, c_jam
+    and gamma_mm) fitted at once to the noise-free keypoints of the reference dataset's true
     material on eight of its training designs: differential evolution and the polish bring
     every keypoint within 1 %."""
     designs = [(20.0, 0.8), (40.0, 0.6), (40.0, 1.0), (60.0, 0.7), (60.0, 0.9), (70.0, 0.8),
@@ -106,7 +107,7 @@ def test_recovers_the_full_parameter_set_from_noise_free_data():
     assert bad == 0
     result = cal.calibrate(designs, measured, DEFAULT_MATERIAL, maxiter=6, popsize=4, seed=1,
                            check_identifiability=False)
-    assert result.free == cal.DEFAULT_FREE and len(result.free) == 10
+    assert result.free == cal.DEFAULT_FREE and len(result.free) == 11
     assert "polished" in result.message
     pred, bad = cal.predict_keypoints(result.material, designs)
     assert bad == 0

@@ -16,7 +16,7 @@ __all__ = ["TRUE_FACTORS", "true_material"]
 
 #: Parameter -> factor applied to the default material's value.
 TRUE_FACTORS = {"w_b_emb": 1.4, "w_b_fab": 1.25, "k_r_emb": 1.6, "k_r_fab": 1.2, "k_theta_emb": 0.8,
-                "w_log": 1.25, "c_emb": 1.5, "c_fab": 0.7, "jam": 1.1, "gamma_mm": 1.2}
+                "w_log": 1.25, "c_emb": 1.5, "c_fab": 0.7, "jam": 1.1, "c_jam": 1.3, "gamma_mm": 1.2}
 
 
 def true_material(base: Material = DEFAULT_MATERIAL, names=None) -> Material:

@@ -64,8 +64,9 @@ def calibrate(data_path, material_path, maxiter, popsize, seed, workers, schedul
     """Fit the material to the training rows of DATA.csv.
 
     Fitted: the seven coefficients but the overall scale k_theta_fab, the compressive ratios
-    of the stitched mats and of the bare knit (c_emb, c_fab), the jamming stretch jam and the
-    hardening limit gamma_mm, by differential evolution and a final least-squares polish.
+    of the stitched mats and of the bare knit (c_emb, c_fab), the jamming stretch jam, the
+    jammed knit's stiffness ratio c_jam and the hardening limit gamma_mm, by differential
+    evolution and a final least-squares polish.
     The objective is the mean squared error over the five keypoints (the paper's). The best
     point so far is written after every generation, so an interrupted run (Ctrl-C) leaves a
     usable material and can be continued with --resume.

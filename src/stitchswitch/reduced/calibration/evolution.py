@@ -5,8 +5,9 @@ The objective is the paper's: the mean squared error (mm^2) over the five keypoi
 
 Parameters (``PARAMS``): the paper's seven coefficients and the parameters of the model that
 move the keypoints by more than the measurement noise: the compressive stiffness ratios of the
-stitched mats ``c_emb`` and of the bare knit ``c_fab``, the jamming stretch ``jam`` and the
-hardening limit ``gamma_mm`` (docs/model.md, "Sensitivity").
+stitched mats ``c_emb`` and of the bare knit ``c_fab``, the jamming stretch ``jam``, the jammed
+knit's stiffness ratio ``c_jam`` and the hardening limit ``gamma_mm`` (docs/model.md,
+"Sensitivity").
 
 Identifiability. The energy is homogeneous of degree one in the seven coefficients (c_emb and
 c_fab are ratios to k_r), so scaling all of them by one factor leaves every equilibrium
@@ -16,8 +17,8 @@ Weaker correlations are measured, not assumed: at the optimum, the Jacobian of t
 keypoints with respect to the search coordinates gives singular values, and directions whose
 singular value is below ``WEAK_RATIO`` times the largest are reported as poorly identified.
 
-Search space (documented bounds, ``BOUNDS``): log10 of the stiffnesses, c_emb, c_fab and
-gamma_mm; w_log and jam on a linear scale (w_log may be 0). c_fab's lower bound 1e-3 keeps the
+Search space (documented bounds, ``BOUNDS``): log10 of the stiffnesses, c_emb, c_fab, c_jam
+and gamma_mm; w_log and jam on a linear scale (w_log may be 0). c_fab's lower bound 1e-3 keeps the
 bare knit's slack segments from being nearly free, which makes Newton's method several times
 slower (docs/model.md, "Compression as physics").
 
@@ -43,7 +44,7 @@ from stitchswitch.reduced.model.params import Material, Patch
 #: The seven coefficients of the paper.
 COEFFICIENTS = ("w_b_emb", "w_b_fab", "k_r_emb", "k_r_fab", "k_theta_emb", "k_theta_fab", "w_log")
 #: Every parameter calibration may fit.
-PARAMS = COEFFICIENTS + ("c_emb", "c_fab", "jam", "gamma_mm")
+PARAMS = COEFFICIENTS + ("c_emb", "c_fab", "jam", "c_jam", "gamma_mm")
 #: Held fixed: the overall scale of the energy is not identifiable.
 SCALE_PARAM = "k_theta_fab"
 #: Bounds of the free parameters: (low, high, scale) with scale "log" (log10) or "linear".
@@ -57,6 +58,7 @@ BOUNDS = {
     "c_emb": (1e-4, 0.3, "log"),
     "c_fab": (1e-3, 0.1, "log"),
     "jam": (0.1, 0.8, "linear"),
+    "c_jam": (0.1, 10.0, "log"),
     "gamma_mm": (0.5, 30.0, "log"),
 }
 #: What ``calibrate`` fits unless told otherwise: every parameter but the scale.
