@@ -64,7 +64,7 @@ class Model:
 
 
 def energy(r: np.ndarray, z: np.ndarray, grid: Grid, terms: Iterable[Term] = ALL_TERMS) -> float:
-    """Total energy (Eq. 6 plus the slack regularization); +inf outside the domain."""
+    """Total energy (Eq. 6 plus the compressive response and the boundary ring); +inf outside the domain."""
     return Model(grid, terms).energy(r, z)
 
 

@@ -1,7 +1,7 @@
 """Typed, frozen, validated parameter objects of the reduced model.
 
-``Material`` holds the seven calibrated coefficients of the paper (Eqs. 3-5), the hardening
-limit, the discretization constants and the slack regularization. The coefficients are
+``Material`` holds the seven coefficients of the paper (Eqs. 3-5), the hardening limit, the
+compressive response, the discretization constants and a numerical floor. The coefficients are
 dimensionless: the energy is written with lengths in units of the node spacing dR (see
 ``docs/model.md``); the bending weights are those at the spacing ``dr_max_mm`` and the
 hardening limit ``gamma_mm`` is a length, both converted to the design's spacing by

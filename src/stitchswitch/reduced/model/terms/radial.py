@@ -3,7 +3,7 @@
     E_r = (1/N) sum_i k_r^(i) max(l_i - lambda_i, 0)^2 lambda_i R_{i+1},
 
 l_i the deformed length of segment i and lambda_i its rest length, both in dR units.
-A slack segment (l < lambda) costs nothing here: the regularization in ``compression.py``
+A slack segment (l < lambda) costs nothing here: the compressive response in ``compression.py``
 is what keeps it from collapsing.
 """
 from __future__ import annotations
