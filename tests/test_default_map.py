@@ -46,12 +46,12 @@ def test_default_map_matches_the_current_model(dmap, i, j):
 
 
 def test_where_the_warm_started_map_differs_from_a_direct_solve_it_is_lower(dmap):
-    """The row d = 54 mm crosses the band of fills where two popped branches coexist (the map's
-    branch-change points, d 36-99 mm). Followed along the fill, the map holds the lower branch
-    up to p = 0.83; the cold direct solve there reaches the upper one (h 15.23 against
-    11.70 mm). Wherever the two differ the map's energy must be the lower (the map is meant to
-    be the better of the two), and they can differ only there: everywhere else on the row they
-    agree (to the soft mode, ``SOFT_H_MM``)."""
+    """The row d = 54 mm crosses the band of fills where two popped branches coexist (the dome
+    and the overhanging neck; the map's branch-change points, d 35-99 mm). The map sweeps the
+    row up and down in fill and keeps the lower energy per point, so where the cold direct
+    solve lands on the other branch (p 0.79-0.84 here) the map's energy must be the lower, and
+    they can differ only inside that band: everywhere else on the row they agree (to the soft
+    mode, ``SOFT_H_MM``)."""
     i = int(np.flatnonzero(dmap.diameter_mm == 54.0)[0])
     differ = []
     for j, p in enumerate(dmap.fill):
@@ -59,7 +59,7 @@ def test_where_the_warm_started_map_differs_from_a_direct_solve_it_is_lower(dmap
         if abs(sol.keypoints.h_mm - dmap.h_mm[i, j]) > SOFT_H_MM:
             differ.append(float(p))
             assert dmap.energy[i, j] < sol.energy, (float(p), dmap.energy[i, j], sol.energy)
-    assert set(differ) <= {0.83}
+    assert differ and all(0.75 <= p <= 0.9 for p in differ), differ
 
 
 def test_every_unsmooth_point_is_flagged_and_explained(dmap):

@@ -1,10 +1,12 @@
 """Build the design-space map: one certified solve per grid design, rows in parallel.
 
-By default (``warm_start=True``) each row (one diameter) is solved along increasing fill, every
-design started from the previous design's certified equilibrium (``solve(..., warm_start=)``;
-a cold solve if there is none). The map then follows the popped branch continuously; it agrees
-with direct (cold) solves except where the cold solve lands on another equilibrium, and there
-the map's has the lower energy (docs/design-map.md). With ``warm_start=False`` every point is
+By default (``warm_start=True``) each row (one diameter) is solved twice, along increasing and
+along decreasing fill, every design started from the previous design's certified equilibrium
+(``solve(..., warm_start=)``; a cold solve if there is none), and each point keeps the lower
+certified energy of the two. Where two popped branches coexist (the dome and the overhanging
+neck near the overhang onset), the sweep up stays on the dome and the sweep down on the neck,
+so the map holds the lower one; it agrees with direct (cold) solves except where the cold solve
+lands on another equilibrium, and there the map's has the lower energy (docs/design-map.md). With ``warm_start=False`` every point is
 ``solve(Patch(d, p), material)`` exactly, as a direct call makes it. Neighbours on the grid are
 also used by ``map_check`` to explain any point that is not smooth (a branch change or the
 buckling onset), by warm-starting one design from its neighbour's profile.
@@ -41,15 +43,33 @@ def parse_range(text: str, name: str) -> np.ndarray:
     return np.round(start + step * np.arange(n), 10)
 
 
-def _solve_row(args):
+def _sweep(d, fills, material, warm):
+    """One solve per fill in the given order, each warm-started from the previous certified one."""
     from stitchswitch.reduced.solvers.solve import solve
 
-    d, fills, material, warm = args
-    rows = {name: [] for name in KEYPOINTS + ("energy", "residual", "converged", "u", "z")}
-    sol = None
+    out, sol = [], None
     for p in fills:
         start = sol if warm and sol is not None and sol.converged else None
         sol = solve(Patch(d, p), material, warm_start=start)
+        out.append(sol)
+    return out
+
+
+def _certified(sol) -> bool:
+    return bool(sol.converged and sol.second_order)
+
+
+def _solve_row(args):
+    d, fills, material, warm = args
+    rows = {name: [] for name in KEYPOINTS + ("energy", "residual", "converged", "u", "z")}
+    sols = _sweep(d, fills, material, warm)
+    if warm:
+        # where two branches coexist (the overhang onset), the sweep up in fill stays on the
+        # dome and the sweep down on the neck: keep, point by point, the lower certified energy
+        down = _sweep(d, fills[::-1], material, warm)[::-1]
+        sols = [b if _certified(b) and (not _certified(a) or b.energy < a.energy) else a
+                for a, b in zip(sols, down)]
+    for sol in sols:
         kp = sol.keypoints
         for name in KEYPOINTS:
             rows[name].append(getattr(kp, name))
@@ -58,7 +78,7 @@ def _solve_row(args):
         rows["converged"].append(sol.converged and bool(sol.second_order))
         rows["u"].append((sol.r_mm - sol.R_mm).astype(np.float32))
         rows["z"].append(sol.z_mm.astype(np.float32))
-    return rows, sol.dr_mm, sol.n_inside
+    return rows, sols[-1].dr_mm, sols[-1].n_inside
 
 
 def build(material: Material = DEFAULT_MATERIAL, diameters_mm=DEFAULT_DIAMETERS_MM,
@@ -66,8 +86,8 @@ def build(material: Material = DEFAULT_MATERIAL, diameters_mm=DEFAULT_DIAMETERS_
           scheduler: str | None = None, warm_start: bool = True) -> DesignMap:
     """Solve every grid design; ``progress(rows_done)`` is called once per diameter (local
     runs). ``scheduler``: a Dask scheduler address to solve the rows on a cluster.
-    ``warm_start``: solve each row along increasing fill from the previous equilibrium
-    (default); False: every point a cold solve.
+    ``warm_start``: sweep each row up and down in fill from the previous equilibrium and keep
+    the lower certified energy per point (default); False: every point a cold solve.
 
     With ``check`` the smoothness test runs and unsmooth points are explained and flagged
     (``smoothness.classify``)."""
