@@ -1,12 +1,13 @@
 """Build the design-space map: one certified solve per grid design, rows in parallel.
 
-By default (``warm_start=True``) each row (one diameter) is solved twice, along increasing and
-along decreasing fill, every design started from the previous design's certified equilibrium
-(``solve(..., warm_start=)``; a cold solve if there is none), and each point keeps the lower
-certified energy of the two. Where two popped branches coexist (the dome and the overhanging
-neck near the overhang onset), the sweep up stays on the dome and the sweep down on the neck,
-so the map holds the lower one; it agrees with direct (cold) solves except where the cold solve
-lands on another equilibrium, and there the map's has the lower energy (docs/design-map.md). With ``warm_start=False`` every point is
+By default (``warm_start=True``) each row (one diameter) is solved along increasing fill, every
+design started from the previous design's certified equilibrium (``solve(..., warm_start=)``;
+a cold solve if there is none). Where two popped branches coexist (the dome and the overhanging
+neck near the overhang onset), that sweep stays on the dome until it ends; so from the point
+where it jumps onto the neck, the neck is followed back down in fill and each point keeps the
+lower certified energy (``_follow_down``). The map agrees with direct (cold) solves except where
+the cold solve lands on another equilibrium, and there the map's has the lower energy
+(docs/design-map.md). With ``warm_start=False`` every point is
 ``solve(Patch(d, p), material)`` exactly, as a direct call makes it. Neighbours on the grid are
 also used by ``map_check`` to explain any point that is not smooth (a branch change or the
 buckling onset), by warm-starting one design from its neighbour's profile.
@@ -59,16 +60,32 @@ def _certified(sol) -> bool:
     return bool(sol.converged and sol.second_order)
 
 
+def _follow_down(d, fills, material, sols):
+    """Where the sweep up in fill jumps onto the overhanging branch (b becomes a neck), follow
+    that branch back down in fill from the jump, warm-started, and keep each point's lower
+    certified energy; stop where the branch ends (b is no neck), joins the sweep's solution or
+    is not lower."""
+    from stitchswitch.reduced.solvers.solve import solve
+
+    sols = list(sols)
+    for j in range(1, len(sols)):
+        if sols[j].keypoints.b_rule != "neck" or sols[j - 1].keypoints.b_rule == "neck":
+            continue
+        start = sols[j]
+        for k in range(j - 1, -1, -1):
+            sol = solve(Patch(d, fills[k]), material, warm_start=start)
+            if not _certified(sol) or sol.keypoints.b_rule != "neck" or not sol.energy < sols[k].energy:
+                break
+            sols[k] = start = sol
+    return sols
+
+
 def _solve_row(args):
     d, fills, material, warm = args
     rows = {name: [] for name in KEYPOINTS + ("energy", "residual", "converged", "u", "z")}
     sols = _sweep(d, fills, material, warm)
     if warm:
-        # where two branches coexist (the overhang onset), the sweep up in fill stays on the
-        # dome and the sweep down on the neck: keep, point by point, the lower certified energy
-        down = _sweep(d, fills[::-1], material, warm)[::-1]
-        sols = [b if _certified(b) and (not _certified(a) or b.energy < a.energy) else a
-                for a, b in zip(sols, down)]
+        sols = _follow_down(d, fills, material, sols)
     for sol in sols:
         kp = sol.keypoints
         for name in KEYPOINTS:
@@ -86,8 +103,9 @@ def build(material: Material = DEFAULT_MATERIAL, diameters_mm=DEFAULT_DIAMETERS_
           scheduler: str | None = None, warm_start: bool = True) -> DesignMap:
     """Solve every grid design; ``progress(rows_done)`` is called once per diameter (local
     runs). ``scheduler``: a Dask scheduler address to solve the rows on a cluster.
-    ``warm_start``: sweep each row up and down in fill from the previous equilibrium and keep
-    the lower certified energy per point (default); False: every point a cold solve.
+    ``warm_start``: sweep each row along increasing fill from the previous equilibrium and
+    follow the overhanging branch back down from where the sweep jumps onto it, keeping the
+    lower certified energy (default); False: every point a cold solve.
 
     With ``check`` the smoothness test runs and unsmooth points are explained and flagged
     (``smoothness.classify``)."""
