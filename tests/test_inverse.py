@@ -35,9 +35,9 @@ def test_bounds_are_respected():
 
 
 def test_radius_target():
-    result = inverse_design(InverseTarget(10.0, radius_mm=15.0, count=3))
+    result = inverse_design(InverseTarget(8.0, radius_mm=15.0, count=3))
     best = result.candidates[0]
-    assert abs(best.h_mm - 10.0) <= HEIGHT_TOL_MM and abs(best.r_a_mm - 15.0) <= 0.2
+    assert abs(best.h_mm - 8.0) <= HEIGHT_TOL_MM and abs(best.r_a_mm - 15.0) <= 0.2
     _check_confirmed(best)
 
 

@@ -18,10 +18,10 @@ from stitchswitch.reduced.design_space.inverse import InverseTarget
 MAX_DIAMETER_MM = 60.0
 #: (label, target height mm, force band N, thread colour): distinct thresholds by tier; each
 #: height lies inside what its band reaches with d <= 60 mm on the default map (soft 2.3-8.3,
-#: medium 10.1-16.0, firm 16.0-16.4 mm)
+#: medium 14.1-16.0, firm 16.0-16.4 mm)
 TIERS = (
     ("soft", 7.0, (0.10, 0.20), "#2a9d8f"),
-    ("medium", 12.0, (0.25, 0.35), "#e9c46a"),
+    ("medium", 15.0, (0.25, 0.35), "#e9c46a"),
     ("firm", 16.3, (0.40, 0.50), "#e76f51"),
 )
 ROW_Y_MM = (100.0, 170.0)        # two rows of buttons on the forearm
