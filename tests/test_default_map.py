@@ -45,21 +45,21 @@ def test_default_map_matches_the_current_model(dmap, i, j):
     assert dmap.r_b_mm[i, j] == pytest.approx(sol.keypoints.r_b_mm, abs=1e-6)
 
 
-def test_where_the_warm_started_map_differs_from_a_direct_solve_it_is_lower(dmap):
+def test_the_map_predicts_what_a_direct_solve_does_across_the_coexistence_band(dmap):
     """The row d = 54 mm crosses the band of fills where two popped branches coexist (the dome
-    and the overhanging neck; the map's branch-change points, d 35-99 mm). The map sweeps the
-    row up and down in fill and keeps the lower energy per point, so where the cold direct
-    solve lands on the other branch (p 0.79-0.84 here) the map's energy must be the lower, and
-    they can differ only inside that band: everywhere else on the row they agree (to the soft
-    mode, ``SOFT_H_MM``)."""
+    and the overhanging neck; the map's branch-change points, d 36-99 mm). The warm sweep stays
+    on the dome until it ends, while the direct (cold) solve lands on the neck a little earlier;
+    next to the sweep's jump the map takes the direct solve's branch, so along the whole row the
+    map agrees with ``solve`` (to the soft mode, ``SOFT_H_MM``). Inside the band the direct
+    solve itself may alternate between the branches (here neck at p 0.83, dome at 0.84, neck
+    from 0.85), and so does the map."""
     i = int(np.flatnonzero(dmap.diameter_mm == 54.0)[0])
-    differ = []
+    jumps = 0
     for j, p in enumerate(dmap.fill):
         sol = solve(Patch(54.0, float(p)))
-        if abs(sol.keypoints.h_mm - dmap.h_mm[i, j]) > SOFT_H_MM:
-            differ.append(float(p))
-            assert dmap.energy[i, j] < sol.energy, (float(p), dmap.energy[i, j], sol.energy)
-    assert differ and all(0.75 <= p <= 0.9 for p in differ), differ
+        assert dmap.h_mm[i, j] == pytest.approx(sol.keypoints.h_mm, abs=SOFT_H_MM), float(p)
+        jumps += j > 0 and dmap.h_mm[i, j] - dmap.h_mm[i, j - 1] > 1.0
+    assert jumps >= 1                                       # the row does cross the band
 
 
 def test_every_unsmooth_point_is_flagged_and_explained(dmap):

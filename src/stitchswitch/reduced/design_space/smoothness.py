@@ -8,7 +8,10 @@ whichever is larger) of the mean of its four neighbours. A point that fails is e
   square root of the distance to it, which no neighbour mean follows;
 * ``branch change`` if two distinct certified equilibria coexist across the stencil: the
   design, warm-started from a neighbour's profile (or the neighbour from the design's), settles
-  on an equilibrium whose h differs from the map's by more than the test's tolerance;
+  on an equilibrium whose h differs from the map's by more than the test's tolerance; or if,
+  failing that, a branch change lies within ``FOLD_STEPS`` designs of it along its row: a branch
+  that ends in a fold steepens there (h like the square root of the distance to the fold), which
+  no neighbour mean follows;
 * ``under-resolved`` if the design is not converged in the discretization: solved again with a
   REFINE times finer spacing (same material), its h moves by more than the test's tolerance.
   This happens for small patches, which the paper's 0.5 mm spacing resolves with only 9-12
@@ -37,6 +40,8 @@ from stitchswitch.reduced.model.params import Patch
 REL_TOL = 0.02
 ABS_TOL_MM = 0.05
 REFINE = 4
+#: How close (designs along the row) a branch change must be to explain a point next to a fold.
+FOLD_STEPS = 2
 
 
 def violations(h: np.ndarray) -> np.ndarray:
@@ -94,6 +99,10 @@ def classify(dmap: DesignMap) -> DesignMap:
             flags[i, j] = FLAG_UNRESOLVED
         else:
             flags[i, j] = FLAG_UNEXPLAINED
+    for i, j in zip(*np.nonzero(flags == FLAG_UNEXPLAINED)):
+        row = flags[i, max(0, j - FOLD_STEPS):j + FOLD_STEPS + 1]
+        if np.any(row == FLAG_BRANCH) and not _under_resolved(dmap, i, j):
+            flags[i, j] = FLAG_BRANCH
     return dataclasses.replace(dmap, flags=flags)
 
 
