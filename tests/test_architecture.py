@@ -9,7 +9,8 @@ SRC = pathlib.Path(__file__).resolve().parents[1] / "src" / "stitchswitch"
 
 #: Layers, bottom to top: a module may import its own layer and the layers below it, never above.
 LAYERS = [
-    ("stitchswitch.errors", "stitchswitch.files", "stitchswitch.blas", "stitchswitch.executor"),
+    ("stitchswitch.errors", "stitchswitch.files", "stitchswitch.blas", "stitchswitch.executor",
+     "stitchswitch.native_output"),
     ("stitchswitch.reduced.model",),
     ("stitchswitch.reduced.solvers",),
     ("stitchswitch.reduced.calibration", "stitchswitch.reduced.design_space"),

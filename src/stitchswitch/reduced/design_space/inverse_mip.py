@@ -17,13 +17,16 @@ checked and the optimality gap reported.
 """
 from __future__ import annotations
 
+import logging
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
+from stitchswitch import native_output
 from stitchswitch.errors import StitchSwitchError
 
+log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class Selection:
@@ -64,7 +67,8 @@ def select(cost: np.ndarray, diameter_mm: np.ndarray, fill: np.ndarray, force_N:
         constraints.append(cp.multiply(force_N - big(hi), x) <= 0)
     problem = cp.Problem(cp.Minimize(cost @ x), constraints)
     t = time.perf_counter()
-    problem.solve(solver=cp.HIGHS)
+    with native_output.to_logger(log):
+        problem.solve(solver=cp.HIGHS)
     seconds = time.perf_counter() - t
     if problem.status not in (cp.OPTIMAL, cp.OPTIMAL_INACCURATE) or x.value is None:
         raise StitchSwitchError(f"candidate selection: HiGHS returned status {problem.status!r}")

@@ -32,17 +32,21 @@ largest area) is always among the loads, so the result never has more hoopings t
 """
 from __future__ import annotations
 
+import logging
 import math
 import time
 import warnings
 
 import numpy as np
 
+from stitchswitch import native_output
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.fabrication.grouping import circle_packing as cpk
 from stitchswitch.layout.fabrication.grouping import greedy
 from stitchswitch.layout.fabrication.grouping.mip import solve_cover
 from stitchswitch.layout.fabrication.grouping.result import Grouping, Hooping, SolveReport
+
+log = logging.getLogger(__name__)
 
 BUDGET = 0.6        # share of the time limit for generating loads
 CG_ROUNDS = 25      # column generation: at most this many LP rounds ...
@@ -152,7 +156,8 @@ def _lp_duals(holds, cost):
     prob = cp.Problem(cp.Minimize(cost @ x), [cover, x >= 0, x <= 1])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)
-        prob.solve(solver=cp.HIGHS)
+        with native_output.to_logger(log):
+            prob.solve(solver=cp.HIGHS)
     if prob.status not in (cp.OPTIMAL, cp.OPTIMAL_INACCURATE) or cover.dual_value is None:
         return None, None
     return np.maximum(np.asarray(cover.dual_value, dtype=float), 0.0), float(prob.value)

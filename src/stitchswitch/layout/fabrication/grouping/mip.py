@@ -18,6 +18,7 @@ from ``solver_stats.extra_stats``; ``time_limit_s`` goes to HiGHS's ``time_limit
 """
 from __future__ import annotations
 
+import logging
 import time
 import warnings
 from dataclasses import dataclass
@@ -25,8 +26,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from stitchswitch import native_output
 from stitchswitch.errors import StitchSwitchError
 
+log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class CoverSolution:
@@ -78,7 +81,8 @@ def solve_cover(cover: np.ndarray, cost: np.ndarray, kind: np.ndarray, type_cost
     try:
         with warnings.catch_warnings():     # "may be inaccurate" at a time limit: reported
             warnings.simplefilter("ignore", UserWarning)
-            problem.solve(solver=cp.HIGHS, **opts)
+            with native_output.to_logger(log):
+                problem.solve(solver=cp.HIGHS, **opts)
     except cp.error.SolverError as exc:
         raise StitchSwitchError(f"hoop grouping: HiGHS failed ({exc})") from None
     seconds = time.perf_counter() - t
