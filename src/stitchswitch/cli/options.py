@@ -69,6 +69,21 @@ class FiniteFloat(click.ParamType):
 
 FINITE_FLOAT = FiniteFloat()
 
+
+class BoundedFloat(FiniteFloat):
+    """A finite float inside [low, high] (or open at ``low`` with ``low_open``): an option whose
+    value past its range would make a command run away or compute nonsense."""
+
+    def __init__(self, low: float, high: float, *, low_open: bool = False):
+        self.low, self.high, self.low_open = low, high, low_open
+        self.range_text = f"{'(' if low_open else '['}{low:g}, {high:g}]"
+
+    def convert(self, value, param, ctx) -> float:
+        v = super().convert(value, param, ctx)
+        if v < self.low or v > self.high or (self.low_open and v == self.low):
+            self.fail(f"{v:g} is outside {self.range_text}", param, ctx)
+        return v
+
 verbose_opt = click.option(
     "--verbose", "-v", count=True, help="More log messages on stderr (-v info, -vv debug).")
 quiet_opt = click.option(

@@ -11,8 +11,11 @@ from stitchswitch.layout.embroidery import stitch_preview as preview
 from stitchswitch.layout.embroidery.machines import default_machine
 from stitchswitch.layout.embroidery.patch_design import geometry_for
 from stitchswitch.layout.embroidery.patch_geometry import make_patch, parse_selection
-from stitchswitch.layout.embroidery.stitches import StitchParams, plan_stitches
+from stitchswitch.layout.embroidery.stitches import ROW_SPACING_RANGE_MM, StitchParams, plan_stitches
 from stitchswitch.layout.garment.design import CompositeSpec, PatchSpec
+
+#: Tatami row spacings a machine can sew (finer rows would pile needle holes, coarser ones leave gaps).
+ROW_SPACING = options.BoundedFloat(ROW_SPACING_RANGE_MM[0], ROW_SPACING_RANGE_MM[1])
 
 
 @click.command(cls=options.Command)
@@ -36,8 +39,8 @@ from stitchswitch.layout.garment.design import CompositeSpec, PatchSpec
                    + ", ".join(export.supported_formats()) + ".")
 @click.option("--hoop", default=None, metavar="NAME",
               help="Hoop (SQ14b, RE20b, SQ20b, RE36b); default the smallest that fits.")
-@click.option("--row-spacing", "row_spacing_mm", type=options.FINITE_FLOAT, default=0.4,
-              show_default=True, metavar="MM", help="Tatami row spacing.")
+@click.option("--row-spacing", "row_spacing_mm", type=ROW_SPACING, default=0.4,
+              show_default=True, metavar="MM", help=f"Tatami row spacing, in {ROW_SPACING.range_text} mm.")
 @click.option("--underlay", is_flag=True, help="Sew an edge-run underlay under every tatami piece.")
 @click.option("--output", "-o", type=click.Path(dir_okay=False), required=True, metavar="FILE")
 @click.option("--preview", "preview_path", type=click.Path(dir_okay=False), default=None,

@@ -24,12 +24,19 @@ def _numbers(text: str, what: str, count: int | None = None) -> list[float]:
     return vals
 
 
+#: The largest --grid: rows and columns each, and patches in all.
+GRID_MAX_SIDE, GRID_MAX_PATCHES = 100, 1000
+
+
 def _grid(text: str) -> tuple[int, int]:
     parts = text.lower().split("x")
     try:
         rows, cols = (int(v) for v in parts)
     except ValueError:
         raise InvalidInputError(f"--grid {text!r}: expected ROWSxCOLS, e.g. 3x4") from None
+    if max(rows, cols) > GRID_MAX_SIDE or rows * cols > GRID_MAX_PATCHES:
+        raise InvalidInputError(f"--grid {text!r}: at most {GRID_MAX_SIDE} rows and columns, "
+                                f"{GRID_MAX_PATCHES} patches in all")
     return rows, cols
 
 
@@ -37,7 +44,8 @@ def _grid(text: str) -> tuple[int, int]:
 @click.argument("design", type=click.Path(dir_okay=False))
 @click.option("--piece", required=True, help="The piece to place the patches on.")
 @click.option("--at", "at", default=None, metavar="X,Y", help="One patch centred at X,Y (mm).")
-@click.option("--grid", default=None, metavar="ROWSxCOLS", help="A grid of patches (--pitch).")
+@click.option("--grid", default=None, metavar="ROWSxCOLS",
+              help=f"A grid of patches (--pitch): at most {GRID_MAX_SIDE} a side, {GRID_MAX_PATCHES} in all.")
 @click.option("--centre", default=None, metavar="X,Y",
               help="Centre of the --grid (default: the piece's centroid).")
 @click.option("--along", default=None, metavar="X,Y;X,Y;...",

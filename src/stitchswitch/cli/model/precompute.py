@@ -20,9 +20,9 @@ from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 @click.command(cls=options.Command)
 @options.material_opt
 @click.option("--diameters", default="15:100:1", show_default=True, metavar="START:STOP:STEP",
-              help="Diameters in mm (inclusive range).")
+              help=f"Diameters in mm (inclusive range, at most {build_map.MAX_AXIS_POINTS} values).")
 @click.option("--fills", default="0.5:1.0:0.01", show_default=True, metavar="START:STOP:STEP",
-              help="Fill fractions (inclusive range).")
+              help=f"Fill fractions (inclusive range, at most {build_map.MAX_AXIS_POINTS} values).")
 @click.option("--workers", type=click.IntRange(min=1), default=None, metavar="N",
               help="Worker processes (default: one per core).")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT",

@@ -47,6 +47,11 @@ NORMAL_THREAD = Thread("embroidery thread", (30, 60, 160))
 CONDUCTIVE_THREAD = Thread("conductive thread", (200, 120, 20))
 
 
+#: Tatami row spacings (mm) that make a fill: finer rows pile needle holes on each other and
+#: multiply the stitch count, coarser ones leave the fabric between rows bare.
+ROW_SPACING_RANGE_MM = (0.1, 5.0)
+
+
 @dataclass(frozen=True)
 class StitchParams:
     row_spacing_mm: float = 0.4
@@ -65,6 +70,10 @@ class StitchParams:
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
                 raise InvalidInputError(f"stitch parameter {name} = {v!r} must be positive")
+        lo, hi = ROW_SPACING_RANGE_MM
+        if not lo <= self.row_spacing_mm <= hi:
+            raise InvalidInputError(f"stitch parameter row_spacing_mm = {self.row_spacing_mm:g} is "
+                                    f"outside [{lo:g}, {hi:g}] mm")
         if self.min_stitch_mm >= self.max_stitch_mm:
             raise InvalidInputError("min_stitch_mm must be smaller than max_stitch_mm")
 

@@ -21,6 +21,8 @@ from stitchswitch.executor import run_all
 from stitchswitch.reduced.design_space.design_map import FLAG_SMOOTH, KEYPOINTS, DesignMap
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material, Patch
 
+#: The most values ``parse_range`` gives for one axis of a map.
+MAX_AXIS_POINTS = 2000
 #: The default grid (the paper's Fig. 4 range): 86 diameters x 51 fills.
 DEFAULT_DIAMETERS_MM = np.arange(15.0, 100.0 + 0.5, 1.0)
 DEFAULT_FILLS = np.round(np.arange(0.50, 1.0 + 0.005, 0.01), 2)
@@ -41,6 +43,9 @@ def parse_range(text: str, name: str) -> np.ndarray:
     if step <= 0 or stop < start:
         raise InvalidInputError(f"{name}: {text!r} needs STEP > 0 and STOP >= START")
     n = int(np.floor((stop - start) / step + 1e-9)) + 1
+    if n > MAX_AXIS_POINTS:
+        raise InvalidInputError(f"{name}: {text!r} gives {n:.3g} values, at most {MAX_AXIS_POINTS} "
+                                "are allowed per axis")
     return np.round(start + step * np.arange(n), 10)
 
 
