@@ -15,25 +15,25 @@ from stitchswitch.cli.main import cli
     (["fem-check", "--designs", "90,1", "--poisson", "0.7"], ["--poisson", "0.7", "(-1, 0.5]"]),
     (["fem-solve", "-d", "50", "-p", "0.8", "--poisson", "-1"], ["--poisson", "-1", "(-1, 0.5]"]),
 ])
-def test_out_of_range_option_is_refused_before_any_work(tmp_path, args, words):
-    with CliRunner().isolated_filesystem(temp_dir=tmp_path):
-        result = CliRunner().invoke(cli, args)
-        assert result.exit_code == 2, result.output
-        for w in words:
-            assert w in result.output, (w, result.output)
-        assert "Traceback" not in result.output
-        assert not any(p.exists() for p in (tmp_path / "m.npz", tmp_path / "p.jef"))
+def test_out_of_range_option_is_refused_before_any_work(tmp_path, monkeypatch, args, words):
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(cli, args)
+    assert result.exit_code == 2, result.output
+    for w in words:
+        assert w in result.output, (w, result.output)
+    assert "Traceback" not in result.output
+    assert not any(p.exists() for p in (tmp_path / "m.npz", tmp_path / "p.jef"))
 
 
-def test_a_huge_grid_is_refused(tmp_path):
+def test_a_huge_grid_is_refused(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
     runner = CliRunner()
-    with runner.isolated_filesystem(temp_dir=tmp_path):
-        assert runner.invoke(cli, ["import", "--rectangle", "300x200", "-o", "d.json"]).exit_code == 0
-        before = open("d.json").read()
-        result = runner.invoke(cli, ["place", "d.json", "--piece", "rectangle", "--grid", "2000x2000",
-                                     "--pitch", "60", "-d", "45", "-p", "0.74"])
-        assert result.exit_code == 2 and "--grid '2000x2000'" in result.output, result.output
-        assert open("d.json").read() == before
+    assert runner.invoke(cli, ["import", "--rectangle", "300x200", "-o", "d.json"]).exit_code == 0
+    before = (tmp_path / "d.json").read_text()
+    result = runner.invoke(cli, ["place", "d.json", "--piece", "rectangle", "--grid", "2000x2000",
+                                 "--pitch", "60", "-d", "45", "-p", "0.74"])
+    assert result.exit_code == 2 and "--grid '2000x2000'" in result.output, result.output
+    assert (tmp_path / "d.json").read_text() == before
 
 
 @pytest.mark.parametrize("command, text", [(["patch"], "[0.1, 5] mm"), (["fem-check"], "(-1, 0.5]"),
