@@ -7,6 +7,10 @@ tool (which is then replaced). ``building`` yields a fresh temporary directory n
 simply replaced; an existing one is moved aside, the new one renamed in and the old one deleted,
 and put back if the rename fails). On any error the temporary directory is removed, so nothing
 half-written is ever left. ``write_outdir`` writes a dict of files that way.
+
+A process killed mid-write (SIGKILL) cannot remove its temporary directory. Their names carry
+the writer's process id (``.<target>.<pid>-<hex>.tmp``), so ``building`` first removes the
+temporary directories next to its target whose writer no longer runs (``remove_stale``).
 """
 from __future__ import annotations
 
@@ -54,13 +58,43 @@ def check_outdir(outdir, force: bool = False, previous: Previous | None = None,
 
 def _new_dir_next_to(out: Path, tag: str) -> Path:
     for _ in range(100):
-        tmp = out.absolute().parent / f".{out.name}.{secrets.token_hex(6)}.{tag}"
+        tmp = out.absolute().parent / f".{out.name}.{os.getpid()}-{secrets.token_hex(6)}.{tag}"
         try:
             os.mkdir(tmp, 0o777)          # the umask applies, as for a plain mkdir
             return tmp
         except FileExistsError:
             continue
     raise FileExistsError(f"could not create a temporary directory next to {str(out)!r}")
+
+
+def _running(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:           # another user's process: alive
+        return True
+    return True
+
+
+def remove_stale(outdir) -> list[Path]:
+    """Remove the temporary directories next to ``outdir`` left by writers that no longer run
+    (our own naming only); return them."""
+    out = Path(outdir).absolute()
+    prefix = f".{out.name}."
+    removed = []
+    if not out.parent.is_dir():
+        return removed
+    for entry in out.parent.iterdir():
+        name = entry.name
+        if not (name.startswith(prefix) and name.endswith((".tmp", ".old")) and entry.is_dir()):
+            continue
+        pid, sep, token = name[len(prefix):-4].partition("-")
+        if not (sep and pid.isdigit() and len(token) == 12) or _running(int(pid)):
+            continue
+        shutil.rmtree(entry, ignore_errors=True)
+        removed.append(entry)
+    return removed
 
 
 def _place(tmp: Path, out: Path) -> None:
@@ -86,6 +120,7 @@ def building(outdir, force: bool = False, previous: Previous | None = None,
     """Yield a temporary directory to fill (sub-folders allowed); it becomes ``outdir``."""
     out = Path(outdir)
     check_outdir(out, force, previous, what)
+    remove_stale(out)
     tmp = _new_dir_next_to(out, "tmp")
     try:
         yield tmp
