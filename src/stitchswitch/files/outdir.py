@@ -10,7 +10,9 @@ half-written is ever left. ``write_outdir`` writes a dict of files that way.
 
 A process killed mid-write (SIGKILL) cannot remove its temporary directory. Their names carry
 the writer's process id (``.<target>.<pid>-<hex>.tmp``), so ``building`` first removes the
-temporary directories next to its target whose writer no longer runs (``remove_stale``).
+temporary directories next to its target whose writer no longer runs (``remove_stale``). The
+test is by process id on this machine: a folder shared with writers on other hosts is not
+supported.
 """
 from __future__ import annotations
 
