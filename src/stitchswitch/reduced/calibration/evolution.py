@@ -93,7 +93,7 @@ def predict_keypoints(material: Material, designs) -> tuple[np.ndarray, int]:
         sol = solve(Patch(d, p), material)
         kp = sol.keypoints
         out.append((kp.h_mm, kp.r_a_mm, kp.z_a_mm, kp.r_b_mm, kp.z_b_mm))
-        bad += not (sol.converged and sol.second_order)
+        bad += not sol.certified
     return np.array(out), bad
 
 
@@ -165,13 +165,31 @@ def identifiability(objective: Objective, x: np.ndarray, step: float = 1e-3) -> 
     }
 
 
+def start_point(x, bounds) -> np.ndarray:
+    """``x`` (search coordinates) moved into ``bounds``."""
+    return np.clip(np.asarray(x, dtype=float), [b[0] for b in bounds], [b[1] for b in bounds])
+
+
+def evolve(objective, bounds, x0, *, maxiter: int, popsize: int, seed: int, tol: float,
+           executor=None, callback=None):
+    """scipy's differential evolution as every fit here runs it: from ``x0`` and a Latin
+    hypercube, the population updated once per generation (so one worker and many give the
+    same result), without scipy's own polish (``polish_fit`` follows)."""
+    from scipy.optimize import differential_evolution
+
+    return differential_evolution(objective, bounds, maxiter=maxiter, popsize=popsize, seed=seed,
+                                  tol=tol, x0=x0, workers=executor if executor is not None else 1,
+                                  updating="deferred", polish=False, init="latinhypercube",
+                                  callback=callback)
+
+
 def polish_fit(objective: Objective, x, f: float, bounds, max_evaluations: int = POLISH_EVALUATIONS):
     """(x, objective, evaluations used) after a bounded least-squares polish from ``x``; the
     start is returned unchanged unless the polish lowers the objective below ``f``."""
     from scipy.optimize import least_squares
 
     lo, hi = np.array([b[0] for b in bounds]), np.array([b[1] for b in bounds])
-    x = np.clip(np.asarray(x, dtype=float), lo, hi)
+    x = start_point(x, bounds)
     counter = {"n": 0}
 
     def fun(v):
@@ -197,8 +215,6 @@ def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize:
     ``callback(generation, best_material, best_mse)`` after every generation; it may raise
     KeyboardInterrupt, which ends the search with the best point so far.
     ``polish``: finish with the local least-squares step (module docstring)."""
-    from scipy.optimize import differential_evolution
-
     free = tuple(free or DEFAULT_FREE)
     unknown = [n for n in free if n not in BOUNDS]
     if unknown:
@@ -209,8 +225,7 @@ def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize:
         raise InvalidInputError(f"measured: expected ({len(designs)}, 5) keypoints, got {measured.shape}")
     objective = Objective(start, free, tuple((float(d), float(p)) for d, p in designs), measured)
     bounds = _search_bounds(free)
-    x_start = _to_x(start.as_dict(), free) if x0 is None else np.asarray(x0, dtype=float)
-    x_start = np.clip(x_start, [b[0] for b in bounds], [b[1] for b in bounds])
+    x_start = start_point(_to_x(start.as_dict(), free) if x0 is None else x0, bounds)
     state = {"gen": 0, "best_x": x_start, "best_f": math.inf, "nfev": 0}
     t0 = time.perf_counter()
 
@@ -222,11 +237,8 @@ def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize:
 
     interrupted = False
     try:
-        res = differential_evolution(
-            objective, bounds, maxiter=maxiter, popsize=popsize, seed=seed, tol=tol,
-            x0=x_start, workers=executor if executor is not None else 1,
-            updating="deferred",
-            polish=False, init="latinhypercube", callback=on_generation)
+        res = evolve(objective, bounds, x_start, maxiter=maxiter, popsize=popsize, seed=seed, tol=tol,
+                     executor=executor, callback=on_generation)
         best_x, best_f, message, nfev = res.x, float(res.fun), str(res.message), int(res.nfev)
         if polish:
             best_x, best_f, used = polish_fit(objective, best_x, best_f, bounds)

@@ -89,7 +89,7 @@ def evaluate(material: Material) -> Evaluation:
     for d, p in dict.fromkeys(designs):
         patch = Patch(d, p)
         sol = solve(patch, material)
-        bad += not (sol.converged and sol.second_order)
+        bad += not sol.certified
         kps[(d, p)] = sol.keypoints
         ratio = max(ratio, limit_ratio(make_grid(patch, material), sol.r_mm / sol.dr_mm))
     means = {k: float(np.mean([getattr(kps[dp], k) for dp in CALIBRATION_DESIGNS])) for k in KEYS}
@@ -142,17 +142,13 @@ def fit_magnitudes(start: Material, *, maxiter: int = 20, popsize: int = 8, seed
                    executor=None, free=None, label: str = "") -> MagnitudeFit:
     """Differential evolution and polish of ``MagnitudeObjective`` from ``start`` (module
     docstring); ``label`` is written into the fitted material."""
-    from scipy.optimize import differential_evolution
-
     free = tuple(free or cal.DEFAULT_FREE)
     bounds = cal._search_bounds(free)
-    x0 = np.clip(cal._to_x(start.as_dict(), free), [b[0] for b in bounds], [b[1] for b in bounds])
+    x0 = cal.start_point(cal._to_x(start.as_dict(), free), bounds)
     objective = MagnitudeObjective(start, free, tuple(x0))
     t0 = time.perf_counter()
-    res = differential_evolution(objective, bounds, maxiter=maxiter, popsize=popsize, seed=seed,
-                                 x0=x0, workers=executor if executor is not None else 1,
-                                 updating="deferred",
-                                 polish=False, init="latinhypercube", tol=1e-8)
+    res = cal.evolve(objective, bounds, x0, maxiter=maxiter, popsize=popsize, seed=seed, tol=1e-8,
+                     executor=executor)
     x, f, used = cal.polish_fit(objective, res.x, float(res.fun), bounds)
     material = cal._from_x(x, free, start).replace(label=label)
     return MagnitudeFit(material, f, evaluate(material), int(res.nfev) + used, time.perf_counter() - t0)

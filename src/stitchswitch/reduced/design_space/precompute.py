@@ -61,10 +61,6 @@ def _sweep(d, fills, material, warm):
     return out
 
 
-def _certified(sol) -> bool:
-    return bool(sol.converged and sol.second_order)
-
-
 #: How many designs before a jump of the sweep, and after it, are checked against a cold solve.
 JUMP_WINDOW = (3, 1)
 #: A jump: consecutive heights that differ by more than this (mm), or b changing its rule.
@@ -89,7 +85,7 @@ def _as_direct(d, fills, material, sols):
                 continue
             checked.add(k)
             cold = solve(Patch(d, fills[k]), material)
-            if _certified(cold) and abs(cold.keypoints.h_mm - sols[k].keypoints.h_mm) > JUMP_H_MM / 10:
+            if cold.certified and abs(cold.keypoints.h_mm - sols[k].keypoints.h_mm) > JUMP_H_MM / 10:
                 sols[k] = cold
     return sols
 
@@ -106,7 +102,7 @@ def _solve_row(args):
             rows[name].append(getattr(kp, name))
         rows["energy"].append(sol.energy)
         rows["residual"].append(sol.residual)
-        rows["converged"].append(sol.converged and bool(sol.second_order))
+        rows["converged"].append(sol.certified)
         rows["u"].append((sol.r_mm - sol.R_mm).astype(np.float32))
         rows["z"].append(sol.z_mm.astype(np.float32))
     return rows, sols[-1].dr_mm, sols[-1].n_inside

@@ -66,7 +66,7 @@ def _other_equilibrium(dmap: DesignMap, target, source) -> bool:
     (i, j), (k, m) = target, source
     sol = solve(Patch(dmap.diameter_mm[i], dmap.fill[j]), dmap.material,
                 warm_start=_profile(dmap, k, m))
-    if not (sol.converged and sol.second_order):
+    if not sol.certified:
         return False
     h = dmap.h_mm[i, j]
     return abs(sol.keypoints.h_mm - h) > max(REL_TOL * abs(h), ABS_TOL_MM)
@@ -101,7 +101,7 @@ def classify(dmap: DesignMap) -> DesignMap:
             flags[i, j] = FLAG_UNEXPLAINED
     for i, j in zip(*np.nonzero(flags == FLAG_UNEXPLAINED)):
         row = flags[i, max(0, j - FOLD_STEPS):j + FOLD_STEPS + 1]
-        if np.any(row == FLAG_BRANCH) and not _under_resolved(dmap, i, j):
+        if np.any(row == FLAG_BRANCH):          # (the first pass found it resolved)
             flags[i, j] = FLAG_BRANCH
     return dataclasses.replace(dmap, flags=flags)
 

@@ -47,6 +47,11 @@ class Solution:
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
+    def certified(self) -> bool:
+        """Converged and a strict local minimum: the result this package stands behind."""
+        return bool(self.converged and self.second_order)
+
+    @property
     def keypoints(self):
         """The five measurable quantities (``stitchswitch.reduced.model.keypoints``)."""
         if "kp" not in self._cache:

@@ -36,7 +36,7 @@ def solve_item(item):
     sol = solve_effects(Patch(d, p), material, active, warm_start=warm, max_iter=MAX_NEWTON)
     kp = sol.keypoints
     values = np.array([kp.h_mm, kp.r_a_mm, kp.z_a_mm, kp.r_b_mm, kp.z_b_mm])
-    return (values, bool(sol.converged and sol.second_order), (sol if warm is None else None),
+    return (values, sol.certified, (sol if warm is None else None),
             float(sol.residual))
 
 
