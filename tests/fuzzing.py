@@ -32,10 +32,12 @@ def edited(seed: bytes, *edits):
         lambda pick: pick[0](pick[1], seed))
 
 
-def check_refusal(load, path, name: str | None = None):
-    """``load(path)``; if it raises, the error must be ``InvalidInputError`` with a short
-    message (the file's path, the user's choice, not counted) that names the file (``name``,
-    default the file name). Returns what loaded."""
+def check_refusal(load, path, name: str | None = None, data: bytes | None = None):
+    """``load(path)`` (after writing ``data`` to ``path``, if given); if it raises, the error
+    must be ``InvalidInputError`` with a short message (the file's path, the user's choice, not
+    counted) that names the file (``name``, default the file name). Returns what loaded."""
+    if data is not None:
+        path.write_bytes(data)
     name = name or path.name
     try:
         return load(path)

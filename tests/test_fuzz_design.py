@@ -35,6 +35,4 @@ def test_the_seed_loads(tmp_path):
 @FUZZ
 @given(data=edited(json.dumps(DESIGN, indent=1).encode(), byte_edit, json_edit, json_edit))
 def test_corrupted_copies(tmp_path, data):
-    path = tmp_path / "design.json"
-    path.write_bytes(data)
-    check_refusal(load_design, path)
+    check_refusal(load_design, tmp_path / "design.json", data=data)

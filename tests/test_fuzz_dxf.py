@@ -28,8 +28,6 @@ def test_corrupted_copies(tmp_path, name):
     @FUZZ
     @given(data=edited(seed, byte_edit, dxf_line_edit, dxf_line_edit))
     def check(data):
-        path = tmp_path / "pattern.dxf"
-        path.write_bytes(data)
-        check_refusal(load, path)
+        check_refusal(load, tmp_path / "pattern.dxf", data=data)
 
     check()

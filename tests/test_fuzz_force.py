@@ -18,17 +18,13 @@ SEED = resources.files("stitchswitch").joinpath("data/force_synthetic.csv").read
 @FUZZ
 @given(data=edited(SEED, byte_edit))
 def test_byte_edits(tmp_path, data):
-    path = tmp_path / "force.csv"
-    path.write_bytes(data)
-    check_refusal(load_force_csv, path)
+    check_refusal(load_force_csv, tmp_path / "force.csv", data=data)
 
 
 @FUZZ
 @given(data=edited(SEED, line_edit))
 def test_line_edits(tmp_path, data):
-    path = tmp_path / "force.csv"
-    path.write_bytes(data)
-    check_refusal(load_force_csv, path)
+    check_refusal(load_force_csv, tmp_path / "force.csv", data=data)
 
 
 def test_a_long_split_value_is_shortened(tmp_path):

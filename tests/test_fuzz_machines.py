@@ -16,6 +16,4 @@ SEED = resources.files("stitchswitch").joinpath("data/machines.json").read_bytes
 @FUZZ
 @given(data=edited(SEED, byte_edit, json_edit, json_edit))
 def test_corrupted_copies(tmp_path, data):
-    path = tmp_path / "machines.json"
-    path.write_bytes(data)
-    check_refusal(lambda p: load_machines(p, supported_formats()), path)
+    check_refusal(lambda p: load_machines(p, supported_formats()), tmp_path / "machines.json", data=data)

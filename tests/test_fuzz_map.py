@@ -26,9 +26,7 @@ SEED = _saved()
 @FUZZ
 @given(data=edited(SEED, byte_edit, map_edit, map_edit), d=st.floats(0, 1), p=st.floats(0, 1))
 def test_corrupted_copies(tmp_path, data, d, p):
-    path = tmp_path / "map.npz"
-    path.write_bytes(data)
-    dmap = check_refusal(storage.load_map, path)
+    dmap = check_refusal(storage.load_map, tmp_path / "map.npz", data=data)
     if dmap is not None:
         lo_d, hi_d = dmap.diameter_mm[0], dmap.diameter_mm[-1]
         lo_p, hi_p = dmap.fill[0], dmap.fill[-1]

@@ -16,6 +16,4 @@ SEED = resources.files("stitchswitch").joinpath("data/default_material.json").re
 @FUZZ
 @given(data=edited(SEED, byte_edit, json_edit, json_edit))
 def test_corrupted_copies(tmp_path, data):
-    path = tmp_path / "material.json"
-    path.write_bytes(data)
-    check_refusal(load_material, path)
+    check_refusal(load_material, tmp_path / "material.json", data=data)

@@ -15,6 +15,4 @@ SEED = resources.files("stitchswitch").joinpath("data/measured_synthetic.csv").r
 @FUZZ
 @given(data=edited(SEED, byte_edit, line_edit, line_edit))
 def test_corrupted_copies(tmp_path, data):
-    path = tmp_path / "measured.csv"
-    path.write_bytes(data)
-    check_refusal(load_measurements, path)
+    check_refusal(load_measurements, tmp_path / "measured.csv", data=data)
