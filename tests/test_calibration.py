@@ -112,3 +112,23 @@ def test_recovers_the_full_parameter_set_from_noise_free_data():
     pred, bad = cal.predict_keypoints(result.material, designs)
     assert bad == 0
     assert np.max(np.abs(pred - measured) / np.maximum(np.abs(measured), 1.0)) < 0.01
+
+
+def test_search_resolution_keeps_the_domain_and_the_result_is_the_fine_models():
+    """The search runs on fewer nodes over the same domain (every design's outer radius stays
+    put), and what ``calibrate`` reports (material, MSE) is the start's own resolution's."""
+    from stitchswitch.reduced.model.discretization import make_grid
+
+    coarse = cal.search_material(DEFAULT_MATERIAL)
+    assert coarse.n_nodes == cal.SEARCH_NODES < DEFAULT_MATERIAL.n_nodes
+    for d, p in DESIGNS + [(15.0, 0.6), (100.0, 1.0)]:
+        fine_grid, coarse_grid = make_grid(Patch(d, p), DEFAULT_MATERIAL), make_grid(Patch(d, p), coarse)
+        outer = [(g.n_nodes - 1) * g.dr_mm for g in (fine_grid, coarse_grid)]
+        assert outer[1] == pytest.approx(outer[0], rel=0.02)
+    assert cal.search_material(DEFAULT_MATERIAL, None) is DEFAULT_MATERIAL
+    measured, _ = cal.predict_keypoints(TRUE, DESIGNS[:3])
+    result = cal.calibrate(DESIGNS[:3], measured, DEFAULT_MATERIAL, maxiter=2, popsize=3, seed=0,
+                           free=("w_b_emb",), check_identifiability=False)
+    assert result.material.n_nodes == DEFAULT_MATERIAL.n_nodes
+    pred, _ = cal.predict_keypoints(result.material, DESIGNS[:3])
+    assert result.mse_mm2 == pytest.approx(float(np.mean((pred - measured) ** 2)), rel=1e-12)

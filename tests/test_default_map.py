@@ -13,6 +13,7 @@ from stitchswitch.reduced.design_space.design_map import (
 )
 from stitchswitch.reduced.design_space.precompute import DEFAULT_DIAMETERS_MM, DEFAULT_FILLS
 from stitchswitch.reduced.model.material_io import material_hash
+from stitchswitch.reduced.solvers.solve import DEFAULT_TOL
 
 
 @pytest.fixture(scope="module")
@@ -26,7 +27,7 @@ def test_default_map_is_for_the_default_material_and_grid(dmap):
     assert np.array_equal(dmap.diameter_mm, DEFAULT_DIAMETERS_MM)
     assert np.array_equal(dmap.fill, DEFAULT_FILLS)
     assert dmap.shape == (86, 51)
-    assert dmap.converged.all() and dmap.residual.max() <= 1e-11
+    assert dmap.converged.all() and dmap.residual.max() <= DEFAULT_TOL
     assert map_for(DEFAULT_MATERIAL) is dmap
 
 

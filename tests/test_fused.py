@@ -11,6 +11,7 @@ from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.model.terms import ALL_TERMS, variants
 from stitchswitch.reduced.model.terms.extra import gravity
 from stitchswitch.reduced.solvers import continuation, fused, newton
+from stitchswitch.reduced.solvers.solve import DEFAULT_TOL
 
 
 def _state(grid, seed):
@@ -66,11 +67,11 @@ def test_compiled_and_interpreted_newton_reach_the_same_certified_state(design):
     wrapped = dataclasses.replace(bending, accumulate=lambda r, z, c, g, h: bending.accumulate(r, z, c, g, h))
     interpreted_terms = ALL_TERMS[:-1] + (wrapped,)
     assert fused.coefficients(interpreted_terms, grid) is None
-    a = newton.minimize(grid, r0, z0, tol=1e-11, max_iter=300)
-    b = newton.minimize(grid, r0, z0, tol=1e-11, max_iter=300, terms=interpreted_terms)
+    a = newton.minimize(grid, r0, z0, tol=DEFAULT_TOL, max_iter=300)
+    b = newton.minimize(grid, r0, z0, tol=DEFAULT_TOL, max_iter=300, terms=interpreted_terms)
     assert a.converged and b.converged and a.second_order and b.second_order
     np.testing.assert_allclose(a.energy, b.energy, rtol=1e-12)
     np.testing.assert_allclose(a.z, b.z, atol=1e-6)
     np.testing.assert_allclose(a.r, b.r, atol=1e-6)
-    again = newton.minimize(grid, r0, z0, tol=1e-11, max_iter=300)
+    again = newton.minimize(grid, r0, z0, tol=DEFAULT_TOL, max_iter=300)
     assert np.array_equal(again.z, a.z) and again.iterations == a.iterations     # deterministic

@@ -12,6 +12,7 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.material_io import material_hash
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 from stitchswitch.reduced.solvers import solve as solve_module
+from stitchswitch.reduced.solvers.solve import DEFAULT_TOL
 from stitchswitch.validation import report as report_module
 from stitchswitch.validation.measured import QUANTITIES, load_measurements
 from stitchswitch.validation.metrics import PAPER_TABLE1
@@ -62,7 +63,7 @@ def test_predict_matches_direct_solves(dataset):
     pred = predict(load_measurements(path), DEFAULT_MATERIAL)
     assert pred.values.shape == (10, 5) and pred.all_converged
     np.testing.assert_allclose(pred.values, predicted, rtol=0, atol=1e-12)
-    assert np.all(pred.residual <= 1e-11) and len(pred.b_rule) == 10
+    assert np.all(pred.residual <= DEFAULT_TOL) and len(pred.b_rule) == 10
 
 
 def test_report_files_exist_and_pngs_are_valid(built):

@@ -7,6 +7,7 @@ from stitchswitch.reduced.model import assembly
 from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.solvers import continuation, newton
 from stitchswitch.reduced.solvers.constraints import admissible, kkt_residual
+from stitchswitch.reduced.solvers.solve import DEFAULT_TOL
 
 DESIGNS = [(15.0, 0.6), (25.0, 1.0), (40.0, 0.8), (70.0, 1.0), (100.0, 0.6)]
 
@@ -23,17 +24,21 @@ def solutions():
 @pytest.mark.parametrize("dp", DESIGNS)
 def test_certified_solution_satisfies_constraints_and_kkt(solutions, dp):
     sol = solutions[dp]
-    assert sol.converged and sol.residual <= 1e-11 and sol.second_order is True
+    assert sol.converged and sol.residual <= DEFAULT_TOL and sol.second_order is True
     r, z = _dr_units(sol)
     assert admissible(r, z, atol=1e-12)
     # the certificate, recomputed here from the gradient of the total energy
     grid = make_grid(Patch(*dp), DEFAULT_MATERIAL)
-    g = assembly.gradient(r, z, grid)
-    # (the profile went through mm and back: round-off of ~1e-16 relative in r and z, times the
-    # Hessian, which grows like dR^-2 for the finely resolved small patches)
+    _, g, hb = assembly.derivatives(r, z, grid)
+    # The profile went through mm and back: a round-off of a few ulps in r and z, times the
+    # Hessian (which grows like dR^-2 for the finely resolved small patches), may add to the
+    # certificate: at most |H| times two ulps of every coordinate, row by row.
+    ulps = np.empty(2 * r.size)
+    ulps[0::2], ulps[1::2] = np.spacing(np.abs(r)), np.spacing(np.abs(z))
+    roundtrip = (np.abs(assembly.band_to_dense(hb)) @ (2.0 * ulps)).max()
     recomputed = kkt_residual(g[0::2], g[1::2], z[:-1] - z[1:])
-    assert recomputed <= 1e-11
-    assert recomputed == pytest.approx(sol.residual, abs=5e-12)
+    assert recomputed <= DEFAULT_TOL + roundtrip
+    assert recomputed == pytest.approx(sol.residual, abs=5e-12 + roundtrip)
     # and a finite-difference check that r is stationary (independent of the analytic gradient)
     # (h is small: a segment resting near its jamming stretch has a large third derivative)
     for i in (1, grid.n_inside // 2, grid.n_inside, grid.n_inside + 3, grid.n_nodes - 1):
@@ -64,7 +69,7 @@ def test_same_equilibrium_from_different_admissible_starts(solutions, dp):
         drops[0] = 0
         starts.append((r, np.concatenate([np.cumsum(drops[::-1])[::-1], [0.0]])))
     for r0, z0 in starts:
-        res = newton.minimize(grid, r0, z0, tol=1e-11, max_iter=300)
+        res = newton.minimize(grid, r0, z0, tol=DEFAULT_TOL, max_iter=300)
         assert res.converged and res.second_order
         assert res.energy == pytest.approx(sol.energy, rel=1e-9)
         assert np.max(np.abs(res.r * grid.dr_mm - sol.r_mm)) < 1e-5
@@ -143,7 +148,9 @@ def test_compressive_response_inactive_where_every_segment_is_taut():
         assert s.converged and _min_stretch(s) >= 1.0 - 1e-9
     for s in sols[1:]:
         assert s.energy == pytest.approx(sols[0].energy, rel=1e-10)
-        assert s.keypoints.h_mm == pytest.approx(sols[0].keypoints.h_mm, abs=1e-6)
+        # h to the default material's soft mode (tests/test_default_map.py: energies equal to
+        # round-off while h moves up to 3.3e-5 mm)
+        assert s.keypoints.h_mm == pytest.approx(sols[0].keypoints.h_mm, abs=1e-4)
         assert s.keypoints.r_a_mm == pytest.approx(sols[0].keypoints.r_a_mm, abs=1e-6)
 
 

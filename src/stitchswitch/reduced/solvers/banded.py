@@ -1,6 +1,12 @@
 """Banded linear algebra for the Newton solver: restriction of the Hessian to the reduced
 variables of an active set, and a positive-definiteness-checking Cholesky solve.
 
+The solver keeps bands as rows (``*_rows``: ``At[j, k] = A[j + k, j]``, C order, so each band
+column is contiguous and nothing is copied or transposed between restriction, factor and
+solve); the functions without the suffix take and return LAPACK's lower band storage
+(``ab[k, j] = A[j + k, j]``), the layout of scipy's banded routines, for the tests and the
+lowest mode.
+
 The factorization is compiled (``factor``, ``solve_factored``) rather than LAPACK's
 ``dpbtrf``/``dpbtrs`` through scipy: the band is at most a few entries wide and ~600 long, so
 the factorization itself costs microseconds and a call through Python cost more than the work;
@@ -26,9 +32,11 @@ CONTRACT = {"contract"}
 
 
 @njit(cache=True)
-def restrict(hb, dof_map, n_red):
-    """P^T H P in lower band storage, for H given as a lower band ``hb`` (global dofs) and P
-    the 0/1 matrix that maps reduced variable ``dof_map[a]`` to global dof a (-1: fixed).
+def restrict_rows(hb, dof_map, n_red):
+    """P^T H P as band rows: ``At[j, k] = A[j + k, j]`` (C order, n_red x (bw + 1)), the
+    transpose of LAPACK's lower band storage, so that each column of the band is contiguous
+    for the elimination. H is given as a lower band ``hb`` (global dofs) and P is the 0/1
+    matrix that maps reduced variable ``dof_map[a]`` to global dof a (-1: fixed).
 
     Several global dofs may share one reduced variable (merged z groups): their coupling then
     counts twice on the diagonal. The bandwidth of the result is found first."""
@@ -41,7 +49,7 @@ def restrict(hb, dof_map, n_red):
         for k in range(kmax):
             if j + k < n and dof_map[j + k] >= 0:
                 bw = max(bw, abs(dof_map[j + k] - J))
-    ab = np.zeros((bw + 1, n_red))
+    At = np.zeros((n_red, bw + 1))
     for j in range(n):
         J = dof_map[j]
         if J < 0:
@@ -54,28 +62,35 @@ def restrict(hb, dof_map, n_red):
                 continue
             v = hb[k, j]
             if I == J:
-                ab[0, I] += v if k == 0 else 2.0 * v
+                At[I, 0] += v if k == 0 else 2.0 * v
             elif I > J:
-                ab[I - J, J] += v
+                At[J, I - J] += v
             else:
-                ab[J - I, I] += v
-    return ab
+                At[I, J - I] += v
+    return At
 
 
 @njit(cache=True)
-def envelope(ab):
+def restrict(hb, dof_map, n_red):
+    """``restrict_rows`` in LAPACK's lower band storage (``ab[k, j] = A[j + k, j]``; a view)."""
+    return restrict_rows(hb, dof_map, n_red).T
+
+
+@njit(cache=True)
+def envelope_rows(At):
     """Per column j, how many subdiagonal entries of its Cholesky factor can be nonzero: the
     last nonzero of column j of A, or the fill of an earlier column reaching below it
     (Cholesky fills a column only between its diagonal and the lowest row an earlier column
     reaches). A long merged z group makes the band wide (its height couples to every r of the
-    group) but only its own columns long; every other column keeps a few entries."""
-    kd, n = ab.shape[0] - 1, ab.shape[1]
+    group) but only its own columns long; every other column keeps a few entries. ``At``: band
+    rows (``restrict_rows``)."""
+    n, kd = At.shape[0], At.shape[1] - 1
     ends = np.empty(n, dtype=np.int64)
     reach = -1                             # lowest row reached by an earlier column
     for j in range(n):
         h = 0
         for k in range(min(kd, n - 1 - j), 0, -1):
-            if ab[k, j] != 0.0:            # NaN counts as nonzero
+            if At[j, k] != 0.0:            # NaN counts as nonzero
                 h = k
                 break
         reach = max(reach, j + h)
@@ -83,25 +98,31 @@ def envelope(ab):
     return ends
 
 
-@njit(cache=True, fastmath=CONTRACT)
-def factor(ab, shift):
-    """Lower banded Cholesky factor of ab + shift I (lower band storage, ``ab[k, j] =
-    A[j + k, j]``; returned as the transpose of a C-ordered (n, kd + 1) array, so each column
-    of the band is contiguous) and LAPACK's info: 0 on success, j + 1 if the leading minor of
-    order j + 1 is not positive definite (then the factor is incomplete).
+@njit(cache=True)
+def envelope(ab):
+    """``envelope_rows`` of a band in LAPACK's lower band storage."""
+    return envelope_rows(np.ascontiguousarray(ab.T))
 
-    Each column is eliminated only down to its ``envelope``: below it the factor is exactly
-    zero, so the operations skipped would add zeros (the factor is dpbtf2's bit for bit, at a
-    cost that grows with the long columns only, not with the band's widest column)."""
-    n = ab.shape[1]
-    Lt = np.ascontiguousarray(ab.T)        # column j of the band is row j: contiguous loops
+
+@njit(cache=True, fastmath=CONTRACT)
+def factor_rows(At, shift):
+    """(Lt, ends, info): the lower banded Cholesky factor of A + shift I as band rows (``At``
+    from ``restrict_rows``, not modified), its ``envelope_rows`` and LAPACK's info: 0 on
+    success, j + 1 if the leading minor of order j + 1 is not positive definite (then the
+    factor is incomplete).
+
+    Each column is eliminated only down to its envelope: below it the factor is exactly zero,
+    so the operations skipped would add zeros (the factor is dpbtf2's bit for bit, at a cost
+    that grows with the long columns only, not with the band's widest column)."""
+    n = At.shape[0]
+    Lt = At.copy()
     for j in range(n):
         Lt[j, 0] += shift
-    ends = envelope(Lt.T)
+    ends = envelope_rows(Lt)
     for j in range(n):
         ajj = Lt[j, 0]
         if not ajj > 0.0:                  # also catches NaN, as dpbtf2 does
-            return Lt.T, j + 1
+            return Lt, ends, j + 1
         ajj = math.sqrt(ajj)
         Lt[j, 0] = ajj
         kn = ends[j]
@@ -112,27 +133,53 @@ def factor(ab, shift):
             t = -Lt[j, q]
             for p in range(q, kn + 1):
                 Lt[j + q, p - q] += Lt[j, p] * t
-    return Lt.T, 0
+    return Lt, ends, 0
 
 
 @njit(cache=True, fastmath=CONTRACT)
-def solve_factored(L, rhs):
-    """Solve (L L^T) x = rhs with a factor from ``factor`` (dpbtrs: forward, then backward),
-    each column only down to its ``envelope`` (the factor is zero below it)."""
-    n = L.shape[1]
-    ends = envelope(L)
-    x = rhs.copy()
-    for j in range(n):
-        x[j] /= L[0, j]
-        t = x[j]
+def forward_rows(Lt, ends, x, start):
+    """x <- L^-1 x in place for a factor from ``factor_rows``, from row ``start`` on (the
+    entries of x before it are zero)."""
+    for j in range(start, Lt.shape[0]):
+        t = x[j] * (1.0 / Lt[j, 0])        # the reciprocal does not wait for x: no division
+        x[j] = t                           # in the chain of dependent updates
         for p in range(1, ends[j] + 1):
-            x[j + p] -= t * L[p, j]
-    for j in range(n - 1, -1, -1):
+            x[j + p] -= t * Lt[j, p]
+
+
+@njit(cache=True, fastmath=CONTRACT)
+def backward_rows(Lt, ends, x):
+    """x <- L^-T x in place for a factor from ``factor_rows``."""
+    for j in range(Lt.shape[0] - 1, -1, -1):
         t = 0.0
         for p in range(1, ends[j] + 1):
-            t += L[p, j] * x[j + p]
-        x[j] = (x[j] - t) / L[0, j]
+            t += Lt[j, p] * x[j + p]
+        x[j] = (x[j] - t) * (1.0 / Lt[j, 0])
+
+
+@njit(cache=True, fastmath=CONTRACT)
+def solve_rows(Lt, ends, rhs):
+    """Solve (L L^T) x = rhs with a factor from ``factor_rows`` (dpbtrs: forward, then
+    backward), each column only down to its envelope ``ends`` (the factor is zero below it)."""
+    x = rhs.copy()
+    forward_rows(Lt, ends, x, 0)
+    backward_rows(Lt, ends, x)
     return x
+
+
+@njit(cache=True)
+def factor(ab, shift):
+    """``factor_rows`` in LAPACK's lower band storage (``ab[k, j] = A[j + k, j]``): the factor
+    in the same storage (a view of the rows) and info."""
+    Lt, _, info = factor_rows(np.ascontiguousarray(ab.T), shift)
+    return Lt.T, info
+
+
+@njit(cache=True)
+def solve_factored(L, rhs):
+    """Solve (L L^T) x = rhs with a factor from ``factor`` (``solve_rows``)."""
+    Lt = np.ascontiguousarray(L.T)
+    return solve_rows(Lt, envelope_rows(Lt), rhs)
 
 
 def cholesky(ab: np.ndarray, shift: float = 0.0):

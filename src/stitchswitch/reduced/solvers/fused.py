@@ -35,7 +35,7 @@ from stitchswitch.reduced.model.terms.segment import BANDWIDTH
 
 #: Array dimensions (-1: a scalar, "index": a 1-d integer array) of each default term's
 #: coefficients, in assembly order.
-LAYOUT = ((1, 1), (1, 1, 1, 1), (1, 1), (1, -1, -1), ("index", 1, 1, 1, -1), (1, 2, 2))
+LAYOUT = ((1, 1), (1, 1, 1, 1), (1, 1), (1, -1, -1), ("index", 1, 1, 1, -1), (1,))
 
 
 def _prepared(value, ndim):
@@ -108,5 +108,5 @@ def derivatives(r, z, c, grad, hb, want_h):
     total += hardening._kernel(r, z, c[3][0], c[3][1], c[3][2], grad, hb, True, want_h)
     total += boundary_ring._kernel(r, z, c[4][0], c[4][1], c[4][2], c[4][3], c[4][4], grad, hb, True,
                                    want_h)
-    total += bending._kernel(r, z, c[5][0], grad, hb, want_h, c[5][1], c[5][2])
+    total += bending._kernel(r, z, c[5][0], grad, hb, want_h)
     return total

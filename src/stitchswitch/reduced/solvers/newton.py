@@ -126,6 +126,9 @@ def minimize(grid: Grid, r0: np.ndarray, z0: np.ndarray, *, tol: float = 1e-10,
         if status == newton_loop.LINE_SEARCH_FAILED:
             message = "line search failed"
             break
+        if status == newton_loop.STALLED:
+            message = "certificate stalled at its round-off floor, above the tolerance"
+            break
         second_order = status == newton_loop.MINIMUM
         if second_order or escapes >= MAX_ESCAPES:
             message = "converged" if second_order else "converged to a saddle point"

@@ -2,7 +2,7 @@
 
 ``iterate`` runs Newton from an admissible state until the certificate is met, the budget is
 spent or the line search fails: derivatives, certificate and active set, restriction,
-shifted banded Cholesky (``step``), polar retraction (``retraction``) and Armijo backtracking.
+shifted bordered-band Cholesky (``step``, ``bordered``), polar retraction (``retraction``) and Armijo backtracking.
 It takes the energy as two functions, ``derivatives(r, z, model, grad, hb, want_h)`` (adds
 into grad / hb, returns E) and ``energy(r, z, model)``:
 
@@ -14,7 +14,8 @@ into grad / hb, returns E) and ``energy(r, z, model)``:
 
 It returns at a stationary point with the restricted Hessian's factorization status, so
 ``newton`` decides there (strict minimum, or a saddle to escape from, in Python) and calls it
-again. Status codes: ``MINIMUM``, ``SADDLE``, ``BUDGET``, ``LINE_SEARCH_FAILED``.
+again. Status codes: ``MINIMUM``, ``SADDLE``, ``BUDGET``, ``LINE_SEARCH_FAILED``, ``STALLED``
+(the certificate at its round-off floor, above ``tol``).
 """
 from __future__ import annotations
 
@@ -22,16 +23,20 @@ import numpy as np
 from numba import njit
 
 from stitchswitch.reduced.model.terms.segment import BANDWIDTH, NO_HESSIAN
-from stitchswitch.reduced.solvers import fused
-from stitchswitch.reduced.solvers.banded import factor, restrict
+from stitchswitch.reduced.solvers import bordered, fused
+from stitchswitch.reduced.solvers.banded import restrict_rows
 from stitchswitch.reduced.solvers.retraction import drops, point, polar
 from stitchswitch.reduced.solvers.step import direction, reduced_indices, stationarity
 
 ARMIJO = 1e-4
 MAX_BACKTRACK = 60
 ROUNDOFF = 1e-13         # relative size of energy changes that rounding cannot resolve
+#: Newton goes on past the certificate ``tol`` while it still lowers it, down to AIM * tol:
+#: as precise as round-off allows (the soft modes of the profile move by residual over
+#: curvature), but certified as soon as the certificate is met.
+AIM = 1e-2
 
-MINIMUM, SADDLE, BUDGET, LINE_SEARCH_FAILED = 0, 1, 2, 3
+MINIMUM, SADDLE, BUDGET, LINE_SEARCH_FAILED, STALLED = 0, 1, 2, 3, 4
 
 
 @njit(cache=True)
@@ -52,11 +57,26 @@ def _dot(a, b):
     return s
 
 
+@njit(cache=True)
+def _stationary(At, B, C):
+    """The status of a stationary point: ``MINIMUM`` if the restricted Hessian is positive
+    definite, else ``SADDLE``."""
+    return MINIMUM if bordered.factor(At, B, C, 0.0)[5] == 0 else SADDLE
+
+
+@njit(cache=True)
+def _leave(r, z, E, residual, it, shift, status, hb, free):
+    """``iterate``'s return: the restricted Hessian in the node-by-node numbering
+    (``step.reduced_indices``, LAPACK's band storage), which the saddle escape takes."""
+    dof_map, n_red = reduced_indices(r.size, free)
+    return r, z, E, residual, it, shift, status, restrict_rows(hb, dof_map, n_red).T, dof_map
+
+
 def iterate(r, z, model, tol, max_iter, it, shift, derivatives, energy):
     """Newton iterations from (r, z) (admissible, dR units) with ``it`` iterations already
     spent and the last Hessian ``shift``. Returns (r, z, E, residual, it, shift, status, ab,
     dof_map): the last state, its energy and certificate, the restricted Hessian ``ab`` there
-    and its ``dof_map`` (for the saddle escape)."""
+    in the node-by-node numbering and that ``dof_map`` (``_leave``: for the saddle escape)."""
     n = r.size
     grad, hb = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
     g_new = np.zeros(2 * n)
@@ -66,26 +86,33 @@ def iterate(r, z, model, tol, max_iter, it, shift, derivatives, energy):
         hb.fill(0.0)
         E = derivatives(r, z, model, grad, hb, True)
         residual, free = stationarity(grad, u)
-        dof_map, n_red = reduced_indices(n, free)
-        ab = restrict(hb, dof_map, n_red)
-        if residual <= tol:
-            status = MINIMUM if factor(ab, 0.0)[1] == 0 else SADDLE
-            return r, z, E, residual, it, shift, status, ab, dof_map
+        dof_map, n_band, m = bordered.indices(n, free)
+        At, B, C = bordered.restrict(hb, dof_map, n_band, m)
+        certified = residual <= tol
+        # a stationary point: the certificate met well below tol (AIM), or met and nothing
+        # more to gain (the budget spent; below, the round-off floor or a failed search)
+        if residual <= AIM * tol or (certified and it >= max_iter):
+            return _leave(r, z, E, residual, it, shift, _stationary(At, B, C), hb, free)
         if it >= max_iter:
-            return r, z, E, residual, it, shift, BUDGET, ab, dof_map
+            return _leave(r, z, E, residual, it, shift, BUDGET, hb, free)
         it += 1
-        d, shift = direction(ab, grad, dof_map, n_red, shift)
+        d, shift = direction(At, B, C, grad, dof_map, shift)
         l, phi, dl, dphi = polar(r, z, d)
         alpha, accepted = 1.0, False
         r_new, z_new = r, z
         if -_dot(grad, d) <= ROUNDOFF * abs(E):
             # The predicted decrease is below the energy's rounding error, so the Armijo test
-            # cannot decide: accept the full step if it lowers the certificate instead.
+            # cannot decide: accept the full step if it lowers the certificate instead, and
+            # stop if it does not (the certificate is at its round-off floor, where further
+            # steps only move the state by ulps).
             ok, r_new, z_new = point(l, phi, dl, dphi, 1.0)
             if ok:
                 g_new.fill(0.0)
                 derivatives(r_new, z_new, model, g_new, hb, False)
                 accepted = stationarity(g_new, drops(z_new))[0] < residual
+            if not accepted:
+                return _leave(r, z, E, residual, it, shift,
+                              _stationary(At, B, C) if certified else STALLED, hb, free)
         for _ in range(0 if accepted else MAX_BACKTRACK):
             ok, r_new, z_new = point(l, phi, dl, dphi, alpha)
             if ok and energy(r_new, z_new, model) <= E + ARMIJO * _slope(grad, r_new, r, z_new, z):
@@ -93,7 +120,8 @@ def iterate(r, z, model, tol, max_iter, it, shift, derivatives, energy):
                 break
             alpha *= 0.5
         if not accepted:
-            return r, z, E, residual, it, shift, LINE_SEARCH_FAILED, ab, dof_map
+            return _leave(r, z, E, residual, it, shift,
+                          _stationary(At, B, C) if certified else LINE_SEARCH_FAILED, hb, free)
         r, z = r_new, z_new
         u = drops(z)
 

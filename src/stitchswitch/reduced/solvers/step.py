@@ -7,10 +7,12 @@ drops), given the interleaved gradient g (2N,) and the drops u:
 * ``stationarity``: the certificate max |x - P(x - grad E)| (``constraints.kkt_residual``) and
   the free drops (not in the active set A = {j : u_j = 0, dE/du_j > 0}; u_0 is never free);
 * ``reduced_indices``: every interleaved dof's reduced variable (a held drop merges nodes j
-  and j+1 into one z group, so the restricted Hessian stays banded);
-* ``direction``: the Newton direction with the restricted Hessian, shifted by a multiple of
-  the identity that is increased tenfold until it is positive definite (Nocedal & Wright,
-  Alg. 3.3), so every step descends.
+  and j+1 into one z group), numbered node by node: the restricted Hessian is banded, wide
+  where a long run of drops is held (the saddle escape's numbering; ``bordered.indices`` is
+  the Newton step's);
+* ``direction``: the Newton direction with the restricted Hessian (bordered band), shifted by
+  a multiple of the identity that is increased tenfold until it is positive definite (Nocedal
+  & Wright, Alg. 3.3), so every step descends.
 """
 from __future__ import annotations
 
@@ -19,7 +21,7 @@ import math
 import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.solvers.banded import factor, solve_factored
+from stitchswitch.reduced.solvers import bordered
 
 SHIFT_FLOOR = 1e-10      # smallest Hessian shift, relative to the mean diagonal
 
@@ -73,29 +75,34 @@ def reduced_indices(n, free_drop):
 
 
 @njit(cache=True)
-def direction(ab, g, dof_map, n_red, shift):
+def direction(At, B, C, g, dof_map, shift):
     """(d, shift): the Newton direction in interleaved dofs (0 on fixed dofs) with the
-    restricted Hessian ``ab`` (lower band) plus ``shift`` I, where ``shift`` is the previous
-    step's shift divided by ten (0 below the floor) and raised tenfold until the Cholesky
-    factorization succeeds. A Hessian no shift can make positive definite (not finite) gives
-    a NaN direction, which the line search rejects."""
+    restricted Hessian in bordered form (``bordered``: band rows ``At``, border rows ``B``,
+    border block ``C``, numbered by ``dof_map``) plus ``shift`` I, where ``shift`` is the
+    previous step's shift divided by ten (0 below the floor) and raised tenfold until the
+    Cholesky factorization succeeds. A Hessian no shift can make positive definite (not
+    finite) gives a NaN direction, which the line search rejects."""
+    n_band, m = At.shape[0], C.shape[0]
+    n_red = n_band + m
     g_red = np.zeros(n_red)
     for a in range(g.size):
         if dof_map[a] >= 0:
             g_red[dof_map[a]] -= g[a]
     mean = 0.0
-    for j in range(n_red):
-        mean += abs(ab[0, j])
+    for j in range(n_band):
+        mean += abs(At[j, 0])
+    for k in range(m):
+        mean += abs(C[k, k])
     mean = mean / n_red if n_red > 0 else 0.0
     floor = SHIFT_FLOOR * (mean if mean != 0.0 else 1.0)
     shift = shift / 10.0 if shift > floor else 0.0
-    L, info = factor(ab, shift)
+    Lt, ends, Y, Ls, first, info = bordered.factor(At, B, C, shift)
     while info != 0:
         shift = max(10.0 * shift, floor)
         if not shift < math.inf:
             return np.full(g.size, math.nan), shift
-        L, info = factor(ab, shift)
-    x = solve_factored(L, g_red)
+        Lt, ends, Y, Ls, first, info = bordered.factor(At, B, C, shift)
+    x = bordered.solve(Lt, ends, Y, Ls, first, g_red)
     d = np.zeros(g.size)
     for a in range(g.size):
         if dof_map[a] >= 0:
