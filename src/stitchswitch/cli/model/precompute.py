@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import json
-import pathlib
 import sys
 import time
 
@@ -10,6 +9,7 @@ import click
 
 from stitchswitch.cli import options
 from stitchswitch.executor import default_workers
+from stitchswitch.files.outputs import check_distinct, together
 from stitchswitch.reduced.design_space import precompute as build_map
 from stitchswitch.reduced.design_space import smoothness as map_check
 from stitchswitch.reduced.design_space import storage as map_io
@@ -27,10 +27,11 @@ from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
               help="Worker processes (default: one per core).")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT",
               help="Solve on a Dask distributed cluster instead of local processes.")
-@click.option("--out", "out", type=click.Path(dir_okay=False, path_type=pathlib.Path),
-              required=True, metavar="FILE", help="Output map (.npz).")
-@click.option("--plot", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
-              metavar="PNG", help="Also write the h(d, p) heatmap.")
+@click.option("--out", "out", type=options.OutputFile((".npz",)), required=True, metavar="FILE",
+              help="Output map (.npz).")
+@click.option("--plot", type=options.OutputFile((".png",)), default=None, metavar="PNG",
+              help="Also write the h(d, p) heatmap (written together with --out: both or "
+                   "neither).")
 @click.option("--cold-start", is_flag=True,
               help="Solve every point from the released state, exactly as a direct solve "
                    "(default: each diameter along increasing fill, warm-started from the "
@@ -43,6 +44,8 @@ def precompute(material_path, diameters, fills, workers, scheduler, out, plot, c
     Every point is a certified solve; points that fail the neighbour-mean smoothness test are
     listed with their explanation (buckling onset, branch change, under-resolved).
     """
+    outputs = {"--out": out, "--plot": plot}
+    check_distinct(outputs)
     material = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
     d = build_map.parse_range(diameters, "--diameters")
     p = build_map.parse_range(fills, "--fills")
@@ -59,10 +62,11 @@ def precompute(material_path, diameters, fills, workers, scheduler, out, plot, c
         dmap = build_map.build(material, d, p, workers=workers, progress=progress,
                                scheduler=scheduler, warm_start=not cold_start)
     elapsed_s = time.perf_counter() - t0
-    map_io.save_map(dmap, out)
-    if plot is not None:
-        from stitchswitch.reduced.design_space.heatmap import plot_height_map
-        plot_height_map(dmap, plot)
+    with together(outputs) as tmp:
+        map_io.save_map(dmap, tmp["--out"])
+        if plot is not None:
+            from stitchswitch.reduced.design_space.heatmap import plot_height_map
+            plot_height_map(dmap, tmp["--plot"])
     flagged = map_check.report(dmap)
     summary = {"out": str(out), "n_diameters": int(d.size), "n_fills": int(p.size),
                "elapsed_s": round(elapsed_s, 2), "workers": workers,

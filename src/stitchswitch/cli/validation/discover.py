@@ -8,6 +8,7 @@ import click
 
 from stitchswitch.cli import options
 from stitchswitch.files.atomic import atomic_write_text
+from stitchswitch.files.outputs import check_output_file, together
 
 #: The built-in demo: data from the model with hardening switched on (this strength), the
 #: workflow started from the model without it.
@@ -86,8 +87,9 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
                              de_generations=de_generations, seed=seed)
     if report_dir is not None:
         check_discovery_dir(report_dir)
-    if json_out not in (None, "-") and not pathlib.Path(json_out).absolute().parent.is_dir():
-        raise options.InputError(f"--json: directory of {json_out!r} does not exist")
+    json_file = None if json_out in (None, "-") else json_out
+    if json_file is not None:
+        check_output_file(json_file, what="--json")
     workers = workers or default_workers()
 
     with make_executor(workers) as ex:
@@ -116,14 +118,11 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
                        start_label=label)
             bar.label = "done"
             bar.update(bar.length - bar.pos)
-    try:
-        rep = (write_discovery_report(disc, data, start, report_dir, label) if report_dir
-               else report_dict(disc, data, start, label))
-        if json_out not in (None, "-"):
-            atomic_write_text(json_out, report_json(rep))
-    except OSError as exc:
-        raise click.FileError(str(exc.filename or report_dir or json_out),
-                              hint=exc.strerror or str(exc)) from None
+    rep = (write_discovery_report(disc, data, start, report_dir, label) if report_dir
+           else report_dict(disc, data, start, label))
+    with together({"--json": json_file}) as tmp:
+        if json_file is not None:
+            atomic_write_text(tmp["--json"], report_json(rep))
     if json_out == "-":
         click.echo(report_json(rep), nl=False)
         return
