@@ -9,7 +9,7 @@ import time
 
 import click
 
-from stitchswitch.cli import options
+from stitchswitch.cli import options, progress
 from stitchswitch.executor import default_workers, make_executor
 from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.files.outputs import check_distinct, together
@@ -102,18 +102,18 @@ def calibrate(data_path, material_path, maxiter, popsize, seed, workers, schedul
                 "objective": "MSE over h, r_a, z_a, r_b, z_b of the train rows (mm^2)"}
     t0 = time.perf_counter()
 
-    def progress(gen, material, mse):
+    def on_generation(gen, material, mse):
         atomic_write_text(checkpoint, _record_text(_record(
             material, mse, data, settings, start_label, generations=gen,
             elapsed_s=round(time.perf_counter() - t0, 2), message="in progress",
             interrupted=False)))
-        click.echo(f"generation {gen}/{maxiter}: train MSE {mse:.4f} mm^2 "
-                   f"({time.perf_counter() - t0:.0f} s)", err=True)
+        progress.status(f"generation {gen}/{maxiter}: train MSE {mse:.4f} mm^2 "
+                        f"({time.perf_counter() - t0:.0f} s)")
 
     with make_executor(workers, scheduler) as ex:
         result = cal.calibrate(designs, measured, start, maxiter=maxiter, popsize=popsize,
                                seed=seed, executor=ex if workers > 1 or scheduler else None,
-                               callback=progress)
+                               callback=on_generation)
     record = _record(result.material, result.mse_mm2, data, settings, start_label,
                      generations=result.generations, evaluations=result.evaluations,
                      elapsed_s=round(result.elapsed_s, 2), message=result.message,

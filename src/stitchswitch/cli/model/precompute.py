@@ -2,12 +2,11 @@
 from __future__ import annotations
 
 import json
-import sys
 import time
 
 import click
 
-from stitchswitch.cli import options
+from stitchswitch.cli import options, progress
 from stitchswitch.executor import default_workers
 from stitchswitch.files.outputs import check_distinct, together
 from stitchswitch.reduced.design_space import precompute as build_map
@@ -51,15 +50,14 @@ def precompute(material_path, diameters, fills, workers, scheduler, out, plot, c
     p = build_map.parse_range(fills, "--fills")
     workers = workers or default_workers()
     t0 = time.perf_counter()
-    with click.progressbar(length=d.size, label=f"solving {d.size} x {p.size} designs",
-                           file=sys.stderr) as bar:
+    with progress.bar(d.size, f"solving {d.size} x {p.size} designs") as bar:
         last = [0]
 
-        def progress(done):
+        def advance(done):
             bar.update(done - last[0])
             last[0] = done
 
-        dmap = build_map.build(material, d, p, workers=workers, progress=progress,
+        dmap = build_map.build(material, d, p, workers=workers, progress=advance,
                                scheduler=scheduler, warm_start=not cold_start)
     elapsed_s = time.perf_counter() - t0
     with together(outputs) as tmp:

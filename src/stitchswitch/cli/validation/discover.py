@@ -2,11 +2,10 @@
 from __future__ import annotations
 
 import pathlib
-import sys
 
 import click
 
-from stitchswitch.cli import options
+from stitchswitch.cli import options, progress
 from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.files.outputs import check_output_file, together
 
@@ -97,8 +96,8 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
         if demo:
             from stitchswitch.validation.discovery.synthetic import START_MATERIAL, dataset_text
 
-            click.echo("generating the demo data (SYNTHETIC: hardening w_log = "
-                       f"{DEMO_VALUES[0]:g} hidden in the model)", err=True)
+            progress.status("generating the demo data (SYNTHETIC: hardening w_log = "
+                            f"{DEMO_VALUES[0]:g} hidden in the model)")
             data = parse_measurements(dataset_text(DEMO_SOURCE, DEMO_VALUES, seed=DEMO_SEED,
                                                    executor=executor), "demo (built-in)")
             start, label = START_MATERIAL, "default without hardening (w_log = 0)"
@@ -108,13 +107,12 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
             data = load_measurements(given[0])
             start = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
             label = str(material_path) if material_path else "default"
-        with click.progressbar(length=stage_count(config), label="discovery", file=sys.stderr,
-                               show_pos=True) as bar:
-            def progress(message, stage, total):
+        with progress.bar(stage_count(config), "discovery", show_pos=True) as bar:
+            def advance(message, stage, total):
                 bar.label = message
                 bar.update(stage - bar.pos)
 
-            disc = run(data, start, config, executor=executor, progress=progress,
+            disc = run(data, start, config, executor=executor, progress=advance,
                        start_label=label)
             bar.label = "done"
             bar.update(bar.length - bar.pos)
