@@ -3,15 +3,18 @@
 A profile (r_i, z_i) revolved about the z axis gives a triangulated surface: ``n_theta``
 copies of the profile around the circle, the pole collapsed to one point. ``write_mesh``
 writes VTU, VTK, PLY, OBJ, STL or OFF (``MESH_EXTENSIONS``) atomically: meshio writes a
-temporary file next to the target (``files.tempnames``), which then replaces it.
+temporary file next to the target (``files.tempnames``); the time meshio stamps into PLY and
+OBJ headers is removed, so that the same mesh gives the same bytes.
 """
 from __future__ import annotations
 
 import os
+import re
 
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.files.extensions import check_extension
 from stitchswitch.files.tempnames import remove_stale, temp_path
 
@@ -67,7 +70,14 @@ def write_mesh(path, points, triangles, point_data: dict | None = None) -> None:
             meshio.write(os.fspath(tmp), mesh, file_format=fmt)
         except (meshio.WriteError, KeyError, ValueError) as exc:
             raise InvalidInputError(f"mesh file {path!r}: {exc}") from None
-        os.replace(tmp, path)
+        with open(tmp, "rb") as f:
+            data = f.read()
     finally:
         if os.path.exists(tmp):
             os.remove(tmp)
+    atomic_write_bytes(path, _MESHIO_STAMP.sub(rb"\1", data, count=1))
+
+
+#: The time meshio writes into the header comment of PLY and OBJ files ("Created by meshio
+#: v5.3.5, 2026-01-01T12:00:00.000000"): removed, so that the same mesh gives the same bytes.
+_MESHIO_STAMP = re.compile(rb"(Created by meshio v[^,\r\n]*), \d{4}-\d\d-\d\dT[\d:.]+")
