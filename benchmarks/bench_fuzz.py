@@ -30,7 +30,8 @@ line naming the path, and nothing written.
 The SIGKILL sample starts a writing command (``precompute --out --plot``, ``patch -o
 --preview``, ``calibrate --out``, ``preview -o --mesh``, ``simulate --profile-csv``,
 ``fabricate -o``, ``validate --report``) in a subprocess, with or without a previous output in
-place, and kills it at a random time. Every final output must then be absent, the previous one
+place, and kills it at a random time (half of the kills in the last quarter of the run,
+where the files are written). Every final output must then be absent, the previous one
 untouched, or complete (byte-identical to a complete run, or for files that carry timings,
 parseable with the same keys); a command's outputs must all be old or all new (a partial
 file). The command is then run again to completion, which must succeed, leave complete
@@ -431,7 +432,9 @@ def kill_sample(rng: random.Random, n: int, tmp: pathlib.Path) -> tuple[dict, li
             _plant(case, outputs, refs[name])
         proc = subprocess.Popen([sys.executable, "-m", "stitchswitch", "-q", *args], cwd=case,
                                 env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        time.sleep(rng.uniform(0.0, 1.1 * times[name]))
+        # half the kills at any time of the run, half near its end, where the files are written
+        late = rng.random() < 0.5
+        time.sleep(times[name] * (rng.uniform(0.75, 1.05) if late else rng.uniform(0.0, 1.1)))
         killed = proc.poll() is None
         proc.send_signal(signal.SIGKILL)
         proc.wait()
