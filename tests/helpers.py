@@ -71,3 +71,24 @@ def synthetic_map(nd=4, npp=3, nodes=30):
                      dr_mm=d / (2 * DEFAULT_MATERIAL.eta * n_inside), n_inside=n_inside,
                      material=DEFAULT_MATERIAL, material_hash=material_hash(DEFAULT_MATERIAL),
                      flags=np.zeros((nd, npp), np.int8), **tables)
+
+
+def unwritable_dir(tmp_path):
+    """A folder this process cannot create files in: a chmod 555 folder for a normal user;
+    for root (which ignores the mode) /sys, which the kernel keeps read-only. Skips the test
+    if there is none."""
+    import os
+
+    import pytest
+
+    folder = tmp_path / "read-only"
+    folder.mkdir()
+    folder.chmod(0o555)
+    for candidate in (folder, pathlib.Path("/sys")):
+        probe = candidate / f".stitchswitch-probe-{os.getpid()}"
+        try:
+            probe.write_text("x")
+        except OSError:
+            return candidate
+        probe.unlink()
+    pytest.skip("no unwritable folder on this machine")

@@ -67,3 +67,27 @@ def test_target_is_a_directory(tmp_path):
         atomic_write_text(tmp_path / "d", "x")
     assert os.listdir(tmp_path) == ["d"]
     assert os.listdir(tmp_path / "d") == []
+
+
+def test_a_killed_writers_temporary_file_is_removed_by_the_next_write(tmp_path):
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-c", "pass"])
+    proc.wait()
+    stale = tmp_path / f".out.csv.{proc.pid}-0123456789ab.tmp"
+    stale.write_text("half")
+    alive = tmp_path / f".out.csv.{os.getpid()}-0123456789ab.tmp"
+    alive.write_text("being written")
+    foreign = tmp_path / ".out.csv.mine.tmp"
+    foreign.write_text("a user's file")
+    atomic_write_text(tmp_path / "out.csv", "x\n")
+    assert sorted(os.listdir(tmp_path)) == sorted(["out.csv", alive.name, foreign.name])
+
+
+def test_the_temporary_file_is_named_with_the_writers_pid(tmp_path, monkeypatch):
+    seen = []
+    real = atomic.os.replace
+    monkeypatch.setattr(atomic.os, "replace", lambda src, dst: (seen.append(src), real(src, dst)))
+    atomic_write_text(tmp_path / "f.txt", "x")
+    assert os.path.basename(seen[0]).startswith(f".f.txt.{os.getpid()}-")

@@ -191,7 +191,7 @@ def test_write_failure_is_atomic(tmp_path, monkeypatch):
 
     real = od.atomic_write_bytes
     monkeypatch.setattr(od, "atomic_write_bytes", flaky)
-    with pytest.raises(OSError):
+    with pytest.raises(InvalidInputError, match="'.*out': cannot be written .No space left"):
         fab.fabricate(design, tmp_path / "out", fab.FabricateOptions())
     assert not (tmp_path / "out").exists() and leftovers(tmp_path) == []
 

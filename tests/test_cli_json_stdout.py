@@ -18,7 +18,7 @@ def test_inverse_json_is_alone_on_stdout():
 
 
 def test_the_banner_goes_to_the_log_with_verbose():
-    result = run("-v", "-v", "inverse", "--height", "12", "--count", "1", "--json")
+    result = run("-v", "inverse", "--height", "12", "--count", "1", "--json")
     assert result.returncode == 0, result.stderr
     json.loads(result.stdout)
     assert "Running HiGHS" in result.stderr

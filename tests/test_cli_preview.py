@@ -88,7 +88,7 @@ def test_single_patch_view(tmp_path):
     (["DESIGN", "--size", "10x10"], "size: 10x10 is outside [64, 8192]"),
     (["DESIGN", "--mesh", "OUT/m.stl"], "unknown extension '.stl'; use .vtu, .ply, .obj"),
     (["DESIGN", "--color", "rainbow"], "'rainbow' is not one of 'height', 'violations'"),
-    (["DESIGN", "-o", "OUT/p.jpg"], "the 3D preview is written as .png"),
+    (["DESIGN", "-o", "OUT/p.jpg"], "the 3D preview of a design is written as .png"),
     (["DESIGN", "--diameter", "40"], "either a DESIGN file or --diameter/--fill, not both"),
     ([], "give a DESIGN file, or --diameter and --fill"),
     (["--diameter", "40"], "needs both --diameter and --fill"),

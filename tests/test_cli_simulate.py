@@ -139,7 +139,7 @@ def test_bad_material_file_is_one_line_exit_2(tmp_path, content, expected):
 
 def test_unwritable_profile_path_is_one_line(tmp_path):
     result = run("--profile-csv", str(tmp_path / "missing-dir" / "out.csv"))
-    assert result.exit_code == 1
+    assert result.exit_code == 2
     assert len(result.stderr.splitlines()) == 1 and result.stderr.startswith("Error: ")
     assert "missing-dir" in result.stderr and "Traceback" not in result.output
     assert os.listdir(tmp_path) == []

@@ -152,7 +152,7 @@ def test_failure_midway_leaves_nothing(dataset, tmp_path, monkeypatch):
 
     monkeypatch.setattr(map_plot, "plot_height_map", boom)
     path, _ = dataset
-    with pytest.raises(OSError):
+    with pytest.raises(InvalidInputError, match="report directory .*No space left on device"):
         write_report(load_measurements(path), DEFAULT_MATERIAL, tmp_path / "r")
     assert list(tmp_path.iterdir()) == []
 

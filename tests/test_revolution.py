@@ -26,3 +26,24 @@ def test_bad_inputs(tmp_path):
     with pytest.raises(InvalidInputError, match="extension"):
         write_mesh(tmp_path / "mesh", np.zeros((3, 3)), np.array([[0, 1, 2]]))
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("ext", [".ply", ".obj", ".vtu"])
+def test_the_same_mesh_gives_the_same_bytes(tmp_path, ext, monkeypatch):
+    import datetime
+
+    import meshio
+    points, tris = surface_of_revolution(np.linspace(0, 10, 5), np.linspace(3, 0, 5))
+    write_mesh(tmp_path / f"a{ext}", points, tris)
+
+    class Later(datetime.datetime):
+        @classmethod
+        def now(cls, tz=None):
+            return datetime.datetime(2031, 5, 6, 7, 8, 9, 123456)
+    import types
+    for module in ("meshio.ply._ply", "meshio.obj._obj"):      # a later clock
+        monkeypatch.setattr(f"{module}.datetime", types.SimpleNamespace(datetime=Later))
+    write_mesh(tmp_path / f"b{ext}", points, tris)
+    assert (tmp_path / f"a{ext}").read_bytes() == (tmp_path / f"b{ext}").read_bytes()
+    assert b"2031" not in (tmp_path / f"b{ext}").read_bytes()[:400]
+    assert len(meshio.read(tmp_path / f"b{ext}").points) == len(points)

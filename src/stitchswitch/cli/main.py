@@ -6,7 +6,7 @@ import logging
 import click
 
 from stitchswitch import __version__
-from stitchswitch.cli import options
+from stitchswitch.cli import options, progress
 
 #: Subcommand name -> "module:attribute". A subcommand's module is imported only when that
 #: subcommand runs (or help lists it), so that e.g. ``check`` does not load the solver, the
@@ -59,11 +59,16 @@ class _EchoHandler(logging.Handler):
 
 def configure_logging(verbosity: int) -> None:
     """Map verbosity (count of -v minus count of -q) to the level of the ``stitchswitch``
-    logger: 0 warning (default), 1 info, 2+ debug, -1 error, -2 critical."""
+    logger: 0 warning (default), 1 info, 2+ debug, -1 error, -2 critical. Native libraries'
+    console output, ezdxf's log and Python warnings (numpy's RuntimeWarning) come through it
+    at info level (``native_output``): shown with -v, never on a default run."""
+    from stitchswitch.native_output import relay_library_logs
+
     logger = logging.getLogger("stitchswitch")
     logger.setLevel(max(logging.DEBUG, logging.WARNING - 10 * verbosity))
     if not any(isinstance(h, _EchoHandler) for h in logger.handlers):
         logger.addHandler(_EchoHandler())
+    relay_library_logs(logging.getLogger("stitchswitch.libraries"))
 
 
 @click.group(cls=LazyGroup)
@@ -73,4 +78,5 @@ def configure_logging(verbosity: int) -> None:
 def cli(verbose: int, quiet: int) -> None:
     """Bistable embroidered textiles: simulate a circular embroidered patch with the reduced
     model. Lengths are in mm; diameters are measured on the pre-stretched fabric."""
+    click.get_current_context().meta[progress.VERBOSITY] = verbose - quiet
     configure_logging(verbose - quiet)

@@ -3,6 +3,10 @@
 Bad input of any kind, a click usage error or an ``InvalidInputError`` from the library, is
 reported as the single line ``Error: <message>`` on stderr with exit code 2: no usage block, no
 traceback. Subcommands get this by being ``Command`` instances (the group's default class).
+
+Every output file option has the type ``OutputFile``: its path is checked while the options
+are parsed, before the command computes anything (``files.outputs.check_output_file``); the
+command then writes all its files as one unit with ``files.outputs.together``.
 """
 from __future__ import annotations
 
@@ -12,6 +16,7 @@ import pathlib
 import click
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.outputs import check_output_file
 from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM, SOLVERS
 
 
@@ -83,6 +88,27 @@ class BoundedFloat(FiniteFloat):
         if v < self.low or v > self.high or (self.low_open and v == self.low):
             self.fail(f"{v:g} is outside {self.range_text}", param, ctx)
         return v
+
+
+class OutputFile(click.ParamType):
+    """An output file path, refused at parse time (one ``Error:`` line naming the option and the
+    path, exit code 2) if it cannot be written or, with ``extensions``, has another extension.
+    Converts to ``pathlib.Path`` (or ``str`` with ``as_str``)."""
+
+    name = "file"
+
+    def __init__(self, extensions: tuple[str, ...] | None = None, hint: str = "",
+                 as_str: bool = False):
+        self.extensions, self.hint, self.as_str = extensions, hint, as_str
+
+    def convert(self, value, param, ctx):
+        what = param.opts[0] if param is not None and param.opts else "output"
+        try:
+            path = check_output_file(value, self.extensions, what, self.hint)
+        except InvalidInputError as exc:
+            raise InputError(str(exc)) from None
+        return str(value) if self.as_str else path
+
 
 verbose_opt = click.option(
     "--verbose", "-v", count=True, help="More log messages on stderr (-v info, -vv debug).")

@@ -2,6 +2,11 @@
 
 * ``atomic``: ``atomic_write_bytes`` / ``atomic_write_text``: a reader sees the old file or the
   whole new one, never a part.
+* ``outputs``: ``check_output_file`` (an output path refused before any work, naming the
+  user's path), ``check_distinct``, ``together`` (the files of one command replace their
+  targets all or none).
+* ``tempnames``: ``temp_path`` / ``remove_stale``: temporary entries named with the writer's
+  pid, and those of killed writers removed by the next write.
 * ``outdir``: output folders written as a whole (``check_outdir`` before computing, ``building``
   and ``write_outdir`` after), a non-empty target refused unless forced.
 * ``textio``: ``read_text``, ``csv_records``, ``csv_number``: user text files with one clear error

@@ -5,6 +5,10 @@ The data go to a temporary file in the target's directory (same file system, so 
 any error, including KeyboardInterrupt, the temporary file is removed and the error re-raised;
 an existing target is left untouched.
 
+The temporary file is named ``.<name>.<pid>-<hex>.tmp`` (``files.tempnames``): a writer killed
+by SIGKILL cannot remove it, so every write first removes the ones of writers that no longer
+run.
+
 The temporary file is created with mode 0o666 minus the umask, like ``open(path, "w")``; the
 mode of a file being replaced is not preserved. Text is written as UTF-8 with no newline
 translation, so the bytes on disk are the same on every platform.
@@ -13,16 +17,16 @@ from __future__ import annotations
 
 import contextlib
 import os
-import secrets
+
+from stitchswitch.files.tempnames import remove_stale, temp_path
 
 __all__ = ["atomic_write_bytes", "atomic_write_text"]
 
 
 def _create_temp(path: str) -> tuple[int, str]:
     """Open a new, exclusively created temporary file next to ``path``."""
-    directory, name = os.path.split(os.path.abspath(path))
     for _ in range(100):
-        tmp = os.path.join(directory, f".{name}.{secrets.token_hex(6)}.tmp")
+        tmp = os.fspath(temp_path(path))
         try:
             return os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0),
                            0o666), tmp
@@ -44,6 +48,7 @@ def _fsync_directory(directory: str) -> None:
 def atomic_write_bytes(path: str | os.PathLike, data: bytes) -> None:
     """Replace the file at ``path`` by ``data`` atomically."""
     path = os.fspath(path)
+    remove_stale(path)
     fd, tmp = _create_temp(path)
     try:
         with os.fdopen(fd, "wb") as f:

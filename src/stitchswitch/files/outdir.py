@@ -9,22 +9,24 @@ and put back if the rename fails). On any error the temporary directory is remov
 half-written is ever left. ``write_outdir`` writes a dict of files that way.
 
 A process killed mid-write (SIGKILL) cannot remove its temporary directory. Their names carry
-the writer's process id (``.<target>.<pid>-<hex>.tmp``), so ``building`` first removes the
-temporary directories next to its target whose writer no longer runs (``remove_stale``). The
-test is by process id on this machine: a folder shared with writers on other hosts is not
-supported.
+the writer's process id (``.<target>.<pid>-<hex>.tmp``, ``files.tempnames``), so ``building``
+first removes the temporary entries next to its target whose writer no longer runs
+(``remove_stale``).
 """
 from __future__ import annotations
 
 import contextlib
 import os
-import secrets
 import shutil
 from pathlib import Path
 from typing import Callable
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.files.atomic import atomic_write_bytes
+from stitchswitch.files.tempnames import remove_stale, temp_path
+
+__all__ = ["check_outdir", "building", "write_outdir", "previous_output", "remove_stale",
+           "new_dir_next_to"]
 
 #: ``previous(path) -> None`` if the non-empty directory ``path`` is an earlier output of this
 #: tool (so it may be replaced), else the reason it is not, e.g. "holds 'x.txt', not from this
@@ -39,8 +41,15 @@ def check_outdir(outdir, force: bool = False, previous: Previous | None = None,
     out = Path(outdir)
     where = f"{what} {os.fspath(outdir)!r}"
     parent = out.absolute().parent
+    if parent.exists() and not parent.is_dir():
+        raise InvalidInputError(f"{where}: {str(parent)!r} is not a directory")
     if not parent.is_dir():
         raise InvalidInputError(f"{where}: the parent directory {str(parent)!r} does not exist")
+    try:
+        new_dir_next_to(out, "tmp").rmdir()          # can we create the folder beside it?
+    except OSError as exc:
+        raise InvalidInputError(f"{where}: cannot write in the directory {str(parent)!r} "
+                                f"({exc.strerror or type(exc).__name__})") from None
     if not out.exists() and not out.is_symlink():
         return False
     if out.is_symlink() or not out.is_dir():
@@ -58,9 +67,10 @@ def check_outdir(outdir, force: bool = False, previous: Previous | None = None,
     return True
 
 
-def _new_dir_next_to(out: Path, tag: str) -> Path:
+def new_dir_next_to(out, tag: str = "tmp") -> Path:
+    """Create a fresh temporary directory of this process next to ``out`` (``tempnames``)."""
     for _ in range(100):
-        tmp = out.absolute().parent / f".{out.name}.{os.getpid()}-{secrets.token_hex(6)}.{tag}"
+        tmp = temp_path(out, tag)
         try:
             os.mkdir(tmp, 0o777)          # the umask applies, as for a plain mkdir
             return tmp
@@ -69,43 +79,13 @@ def _new_dir_next_to(out: Path, tag: str) -> Path:
     raise FileExistsError(f"could not create a temporary directory next to {str(out)!r}")
 
 
-def _running(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:           # another user's process: alive
-        return True
-    return True
-
-
-def remove_stale(outdir) -> list[Path]:
-    """Remove the temporary directories next to ``outdir`` left by writers that no longer run
-    (our own naming only); return them."""
-    out = Path(outdir).absolute()
-    prefix = f".{out.name}."
-    removed = []
-    if not out.parent.is_dir():
-        return removed
-    for entry in out.parent.iterdir():
-        name = entry.name
-        if not (name.startswith(prefix) and name.endswith((".tmp", ".old")) and entry.is_dir()):
-            continue
-        pid, sep, token = name[len(prefix):-4].partition("-")
-        if not (sep and pid.isdigit() and len(token) == 12) or _running(int(pid)):
-            continue
-        shutil.rmtree(entry, ignore_errors=True)
-        removed.append(entry)
-    return removed
-
-
 def _place(tmp: Path, out: Path) -> None:
     if out.is_dir() and not any(out.iterdir()):
         out.rmdir()
     if not out.exists():
         os.rename(tmp, out)
         return
-    old = _new_dir_next_to(out, "old")
+    old = new_dir_next_to(out, "old")
     old.rmdir()
     os.rename(out, old)
     try:
@@ -119,18 +99,22 @@ def _place(tmp: Path, out: Path) -> None:
 @contextlib.contextmanager
 def building(outdir, force: bool = False, previous: Previous | None = None,
              what: str = "output directory"):
-    """Yield a temporary directory to fill (sub-folders allowed); it becomes ``outdir``."""
+    """Yield a temporary directory to fill (sub-folders allowed); it becomes ``outdir``. An
+    ``OSError`` while writing or placing it becomes an ``InvalidInputError`` naming ``outdir``."""
     out = Path(outdir)
     check_outdir(out, force, previous, what)
     remove_stale(out)
-    tmp = _new_dir_next_to(out, "tmp")
+    tmp = new_dir_next_to(out, "tmp")
     try:
         yield tmp
         check_outdir(out, force, previous, what)          # still acceptable after the work?
         _place(tmp, out)
-    except BaseException:
+    except BaseException as exc:
         with contextlib.suppress(OSError):
             shutil.rmtree(tmp)
+        if isinstance(exc, OSError):
+            raise InvalidInputError(f"{what} {os.fspath(outdir)!r}: cannot be written "
+                                    f"({exc.strerror or type(exc).__name__})") from None
         raise
 
 

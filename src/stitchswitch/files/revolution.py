@@ -2,17 +2,21 @@
 
 A profile (r_i, z_i) revolved about the z axis gives a triangulated surface: ``n_theta``
 copies of the profile around the circle, the pole collapsed to one point. ``write_mesh``
-writes VTU, PLY, OBJ (or any meshio format) atomically: meshio writes a temporary file with the
-same extension next to the target, which then replaces it.
+writes VTU, VTK, PLY, OBJ, STL or OFF (``MESH_EXTENSIONS``) atomically: meshio writes a
+temporary file next to the target (``files.tempnames``); the time meshio stamps into PLY and
+OBJ headers is removed, so that the same mesh gives the same bytes.
 """
 from __future__ import annotations
 
 import os
-import tempfile
+import re
 
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.atomic import atomic_write_bytes
+from stitchswitch.files.extensions import check_extension
+from stitchswitch.files.tempnames import remove_stale, temp_path
 
 
 def surface_of_revolution(r: np.ndarray, z: np.ndarray, n_theta: int = 64):
@@ -40,24 +44,40 @@ def surface_of_revolution(r: np.ndarray, z: np.ndarray, n_theta: int = 64):
     return points, np.vstack(tris)
 
 
+#: The mesh formats ``write_mesh`` writes (meshio's writers for these extensions).
+MESH_EXTENSIONS = (".vtu", ".vtk", ".ply", ".obj", ".stl", ".off")
+
+
 def write_mesh(path, points, triangles, point_data: dict | None = None) -> None:
-    """Write a triangle mesh with meshio (format from the extension), atomically."""
+    """Write a triangle mesh with meshio (format from the extension, one of
+    ``MESH_EXTENSIONS``), atomically."""
     import meshio
 
     path = os.fspath(path)
-    ext = os.path.splitext(path)[1]
+    ext = os.path.splitext(path)[1].lower()
     if not ext:
-        raise InvalidInputError(f"mesh file {path!r}: no extension to choose the format (.vtu, .ply, .obj)")
-    directory = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".mesh-", suffix=ext, dir=directory)
-    os.close(fd)
+        raise InvalidInputError(f"mesh file {path!r}: no extension to choose the format "
+                                f"({', '.join(MESH_EXTENSIONS)})")
+    check_extension(path, MESH_EXTENSIONS, "mesh file")
+    (fmt,) = meshio.extension_to_filetypes[ext][:1]
+    # 32-bit connectivity: PLY has no 64-bit integers (meshio would cast and print a warning)
+    mesh = meshio.Mesh(points, [("triangle", np.asarray(triangles, dtype=np.int32))],
+                       point_data=point_data or {})
+    remove_stale(path)
+    tmp = temp_path(path)
     try:
-        mesh = meshio.Mesh(points, [("triangle", triangles)], point_data=point_data or {})
         try:
-            meshio.write(tmp, mesh)
+            meshio.write(os.fspath(tmp), mesh, file_format=fmt)
         except (meshio.WriteError, KeyError, ValueError) as exc:
             raise InvalidInputError(f"mesh file {path!r}: {exc}") from None
-        os.replace(tmp, path)
+        with open(tmp, "rb") as f:
+            data = f.read()
     finally:
         if os.path.exists(tmp):
             os.remove(tmp)
+    atomic_write_bytes(path, _MESHIO_STAMP.sub(rb"\1", data, count=1))
+
+
+#: The time meshio writes into the header comment of PLY and OBJ files ("Created by meshio
+#: v5.3.5, 2026-01-01T12:00:00.000000"): removed, so that the same mesh gives the same bytes.
+_MESHIO_STAMP = re.compile(rb"(Created by meshio v[^,\r\n]*), \d{4}-\d\d-\d\dT[\d:.]+")

@@ -45,13 +45,11 @@ class PatchProfile:
 
 def available_map(material: Material):
     """The material's design map if it ships or is cached, else None (never builds one)."""
-    from stitchswitch.reduced.design_space import cache, storage
-    from stitchswitch.reduced.model.material_io import material_hash
+    from stitchswitch.reduced.design_space import cache
 
     if material == DEFAULT_MATERIAL:
         return cache.default_map()
-    path = cache.cache_dir() / "maps" / f"{material_hash(material)}.npz"
-    return storage.load_map(path) if path.exists() else None
+    return cache.cached_map(material)
 
 
 def _in_domain(dmap, d: float, p: float) -> bool:

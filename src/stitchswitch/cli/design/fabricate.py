@@ -48,10 +48,7 @@ def fabricate_cmd(design_path, machine, machines_file, hoop, fmt, mode, time_lim
     design = load_design(design_path)
     opts = FabricateOptions(machine, machines_file, hoop, fmt, mode, time_limit_s, spacing_mm,
                             resolution_mm, force)
-    try:
-        res = fabricate(design, outdir, opts)
-    except OSError as exc:
-        raise click.FileError(str(exc.filename or outdir), hint=exc.strerror or str(exc)) from None
+    res = fabricate(design, outdir, opts)
     rep, doc = res.grouping.report, res.doc
     gap = "n/a" if rep.mip_gap is None else f"{100 * rep.mip_gap:.2f} %"
     rows = [

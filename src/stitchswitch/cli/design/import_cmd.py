@@ -9,6 +9,7 @@ import numpy as np
 from stitchswitch.cli import options
 from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.outputs import together
 from stitchswitch.layout.garment.design import VERSION, Design
 from stitchswitch.layout.garment.design_io import save_design
 from stitchswitch.layout.garment.dxf.reader import UNITS, import_dxf
@@ -37,7 +38,7 @@ def _rectangle(text: str) -> tuple[float, float]:
               help="Only these pieces (default: every piece of the size).")
 @click.option("--units", type=click.Choice(sorted(UNITS)), default=None,
               help="Units of a DXF file that does not state them.")
-@click.option("--output", "-o", type=click.Path(dir_okay=False), required=True, metavar="FILE",
+@click.option("--output", "-o", type=options.OutputFile(as_str=True), required=True, metavar="FILE",
               help="The design file to write.")
 def import_cmd(pattern, rectangle, name, size, pieces, units, output):
     """Write a new design file (no patches yet) holding the pieces of the DXF PATTERN (AAMA/ASTM
@@ -57,10 +58,8 @@ def import_cmd(pattern, rectangle, name, size, pieces, units, output):
         chosen = select_pieces(imported, size, names)
         repairs = imported.repairs
     design = Design(VERSION, chosen, ())
-    try:
-        save_design(design, output)
-    except OSError as exc:
-        raise click.FileError(str(exc.filename or output), hint=exc.strerror or str(exc)) from None
+    with together({"--output": output}) as tmp:
+        save_design(design, tmp["--output"])
     rows = [("pieces", str(len(chosen)))]
     for p in chosen:
         w, h = (float(v) for v in np.ptp(p.outline_mm, axis=0))

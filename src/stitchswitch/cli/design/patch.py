@@ -6,6 +6,7 @@ import click
 from stitchswitch.cli import options
 from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.outputs import check_distinct, together
 from stitchswitch.layout.embroidery import export
 from stitchswitch.layout.embroidery import stitch_preview as preview
 from stitchswitch.layout.embroidery.machines import default_machine
@@ -42,29 +43,29 @@ ROW_SPACING = options.BoundedFloat(ROW_SPACING_RANGE_MM[0], ROW_SPACING_RANGE_MM
 @click.option("--row-spacing", "row_spacing_mm", type=ROW_SPACING, default=0.4,
               show_default=True, metavar="MM", help=f"Tatami row spacing, in {ROW_SPACING.range_text} mm.")
 @click.option("--underlay", is_flag=True, help="Sew an edge-run underlay under every tatami piece.")
-@click.option("--output", "-o", type=click.Path(dir_okay=False), required=True, metavar="FILE")
-@click.option("--preview", "preview_path", type=click.Path(dir_okay=False), default=None,
-              metavar="FILE", help="Also write a stitch-plan preview (.png or .svg).")
+@click.option("--output", "-o", type=options.OutputFile(as_str=True), required=True, metavar="FILE")
+@click.option("--preview", "preview_path", type=options.OutputFile((".png", ".svg"), as_str=True),
+              default=None, metavar="FILE",
+              help="Also write a stitch-plan preview (.png or .svg), together with -o: both or "
+                   "neither.")
 def patch(diameter_mm, fill, resolution_mm, conductive, core, outline, fmt, hoop, row_spacing_mm,
           underlay, output, preview_path):
     """Write the embroidery file of one patch (hoop coordinates, centre at 0,0): circular, or
     composite (--core) with an optional non-circular outline (--outline)."""
     fmt_name = export.get_format(fmt).name if fmt else export.format_from_path(output).name
     hoop_obj = default_machine().choose_hoop(diameter_mm, diameter_mm, hoop)
-    if preview_path and not preview_path.lower().endswith((".png", ".svg")):
-        raise InvalidInputError(f"preview {preview_path!r} must end in .png or .svg")
+    outputs = {"--output": output, "--preview": preview_path}
+    check_distinct(outputs)
     if core is None and outline is None:
         selection = parse_selection(conductive) if conductive else None
         geom = make_patch(diameter_mm, fill, resolution_mm, selection)
     else:
         geom = geometry_for(_spec(diameter_mm, fill, conductive, core, outline), resolution_mm)
     plan = plan_stitches(geom, StitchParams(row_spacing_mm=row_spacing_mm, underlay=underlay))
-    try:
-        export.write(output, plan, fmt_name, hoop_obj)
+    with together(outputs) as tmp:
+        export.write(tmp["--output"], plan, fmt_name, hoop_obj)
         if preview_path:
-            preview.write_preview(preview_path, plan, diameter_mm)
-    except OSError as exc:
-        raise click.FileError(str(exc.filename or output), hint=exc.strerror or str(exc)) from None
+            preview.write_preview(tmp["--preview"], plan, diameter_mm)
     rows = [
         ("design", f"d = {diameter_mm:g} mm, fill = {fill:g}, resolution = {resolution_mm:g} mm"),
         ("triangles", f"{geom.n_triangles} ({int(geom.conductive.sum())} conductive)"),

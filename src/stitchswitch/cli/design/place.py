@@ -6,6 +6,7 @@ import click
 from stitchswitch.cli import options
 from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.outputs import check_output_file, together
 from stitchswitch.layout.garment.design import STATES
 from stitchswitch.layout.garment.design_io import load_design, save_design
 from stitchswitch.layout.garment.placement import place_along, place_at, place_grid
@@ -62,7 +63,7 @@ def _grid(text: str) -> tuple[int, int]:
               help="The stable state shown in previews.")
 @click.option("--id-prefix", default="p", show_default=True,
               help="New ids are PREFIX1, PREFIX2, ... after the largest in use.")
-@click.option("--output", "-o", type=click.Path(dir_okay=False), default=None, metavar="FILE",
+@click.option("--output", "-o", type=options.OutputFile(as_str=True), default=None, metavar="FILE",
               help="Write the result here (default: update DESIGN in place, atomically).")
 def place(design, piece, at, grid, centre, along, pitch_mm, diameter_mm, fill, conductive,
           state, id_prefix, output):
@@ -78,6 +79,9 @@ def place(design, piece, at, grid, centre, along, pitch_mm, diameter_mm, fill, c
         raise InvalidInputError("--pitch applies to --grid and --along only")
     if centre and not grid:
         raise InvalidInputError("--centre applies to --grid only")
+    target = output or design
+    if output is None:
+        check_output_file(design, what="DESIGN")      # updated in place: writable?
     d = load_design(design)
     before = len(d.patches)
     extra = dict(conductive=conductive, state=state, id_prefix=id_prefix)
@@ -89,11 +93,8 @@ def place(design, piece, at, grid, centre, along, pitch_mm, diameter_mm, fill, c
     else:
         pts = [_numbers(p, "--along point", 2) for p in along.split(";") if p.strip()]
         d = place_along(d, piece, pts, pitch_mm, diameter_mm, fill, **extra)
-    target = output or design
-    try:
-        save_design(d, target)
-    except OSError as exc:
-        raise click.FileError(str(exc.filename or target), hint=exc.strerror or str(exc)) from None
+    with together({"--output" if output else "DESIGN": target}) as tmp:
+        save_design(d, next(iter(tmp.values())))
     new = d.patches[before:]
     rows = [("added", f"{len(new)} patch(es) on {piece}: d = {diameter_mm:g} mm, fill = {fill:g}")]
     rows += [(p.id, f"({p.centre_mm[0]:.2f}, {p.centre_mm[1]:.2f})") for p in new]

@@ -9,20 +9,18 @@ from stitchswitch.cli import options
 from stitchswitch.cli.output import key_value_table
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.files.extensions import check_extension
+from stitchswitch.files.outputs import check_distinct, together
 from stitchswitch.preview3d.camera import VIEWS
 from stitchswitch.preview3d.colours import COLOURS
-
-
-def _write(fn, path):
-    try:
-        return fn()
-    except OSError as exc:
-        raise click.FileError(str(exc.filename or path), hint=exc.strerror or str(exc)) from None
+from stitchswitch.preview3d.mesh_io import MESH_EXTENSIONS
 
 
 @click.command(cls=options.Command)
 @click.argument("design", required=False, type=click.Path(dir_okay=False))
-@click.option("--output", "-o", type=click.Path(dir_okay=False), required=True, metavar="FILE",
+@click.option("--output", "-o", type=options.OutputFile(
+                  (".png", ".svg"), "the 3D preview of a design is written as .png, a single "
+                  "patch's profile as .png or .svg", as_str=True),
+              required=True, metavar="FILE",
               help="Image to write: .png (design), .png or .svg (single patch).")
 @click.option("--state", type=click.Choice(["up", "down", "mixed"]), default=None,
               help="Pop every patch up or down, or mixed: each patch's own state "
@@ -31,8 +29,10 @@ def _write(fn, path):
               help="Camera: iso (default), top or side.")
 @click.option("--size", default=None, metavar="WxH",
               help="Image size in pixels (default 1200x900).")
-@click.option("--mesh", "mesh_path", type=click.Path(dir_okay=False), default=None, metavar="FILE",
-              help="Also write the surface mesh (.vtu, .ply or .obj, garment mm).")
+@click.option("--mesh", "mesh_path", type=options.OutputFile(MESH_EXTENSIONS, as_str=True),
+              default=None, metavar="FILE",
+              help="Also write the surface mesh (.vtu, .ply or .obj, garment mm), together with "
+                   "-o: both or neither.")
 @click.option("--color", "colour", type=click.Choice(list(COLOURS)), default=None,
               help="Colour by height (default) or by constraint violations.")
 @click.option("--diameter", "-d", "diameter_mm", type=options.FINITE_FLOAT, default=None,
@@ -44,15 +44,12 @@ def preview(design, output, state, view, size, mesh_path, colour, diameter_mm, f
             material_path):
     """Render DESIGN (a design JSON file) in 3D offscreen, or, with --diameter and --fill
     instead of DESIGN, draw one patch's profile with its keypoints and dimensions."""
-    from stitchswitch.preview3d import mesh_io
-
     single = diameter_mm is not None or fill is not None
     if design is not None and single:
         raise InvalidInputError("give either a DESIGN file or --diameter/--fill, not both")
     if design is None and not single:
         raise InvalidInputError("give a DESIGN file, or --diameter and --fill for a single patch")
-    if mesh_path is not None:
-        mesh_io.check_mesh_path(mesh_path)
+    check_distinct({"--output": output, "--mesh": mesh_path})
     if single:
         _single(output, diameter_mm, fill, state, view, size, colour, mesh_path, material_path)
     else:
@@ -80,9 +77,10 @@ def _design(path, output, state, view, size, colour, mesh_path, material_path):
         status = (patch_status, piece_status)
     scene = build_scene(spec_from_design(design).with_state(state))
     image, _ = render.render_scene(scene, opts, status)
-    if mesh_path is not None:
-        n_points = _write(lambda: mesh_io.write_scene_mesh(mesh_path, scene), mesh_path)
-    _write(lambda: render.write_png(output, image), output)
+    with together({"--output": output, "--mesh": mesh_path}) as tmp:
+        if mesh_path is not None:
+            n_points = mesh_io.write_scene_mesh(tmp["--mesh"], scene)
+        render.write_png(tmp["--output"], image)
     ups = sum(p.state == "up" for p in scene.patches)
     rows = [("design", path),
             ("pieces", str(len(scene.pieces))),
@@ -124,9 +122,11 @@ def _single(output, diameter_mm, fill, state, view, size, colour, mesh_path, mat
         spec = PreviewSpec((), (PreviewPatch("patch", (0.0, 0.0), diameter_mm, fill, state),),
                            material)
         scene = build_scene(spec)
-        n_points = _write(lambda: mesh_io.write_scene_mesh(mesh_path, scene), mesh_path)
     from stitchswitch.files.atomic import atomic_write_bytes
-    _write(lambda: atomic_write_bytes(output, data), output)
+    with together({"--output": output, "--mesh": mesh_path}) as tmp:
+        if mesh_path is not None:
+            n_points = mesh_io.write_scene_mesh(tmp["--mesh"], scene)
+        atomic_write_bytes(tmp["--output"], data)
     kp = profile.keypoints
     rows = [("design", f"d = {diameter_mm:g} mm, fill = {fill:g}, popped {state}"),
             ("profile", "design map" if profile.source == "map" else "direct solve"),

@@ -9,10 +9,12 @@ import time
 
 import click
 
-from stitchswitch.cli import options
+from stitchswitch.cli import options, progress
 from stitchswitch.executor import default_workers, make_executor
 from stitchswitch.files.atomic import atomic_write_text
+from stitchswitch.files.outputs import check_distinct, together
 from stitchswitch.reduced.calibration import evolution as cal
+from stitchswitch.reduced.calibration.checkpoint import checkpoint_path, provenance_path, resume_point
 from stitchswitch.reduced.model.material_io import canonical_json, load_material, material_hash
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
@@ -32,13 +34,17 @@ def _record(material, mse, data, settings, start_label, **state) -> dict:
     }
 
 
-def _write(out: pathlib.Path, record: dict) -> None:
-    """The material file (loadable with --material) and a sidecar with the provenance."""
+def _record_text(record: dict) -> str:
+    return json.dumps(record, indent=1, default=float) + "\n"
+
+
+def _write_final(out: pathlib.Path, record: dict) -> None:
+    """The material file (loadable with --material) and its provenance, as one unit."""
     from stitchswitch.reduced.model.params import Material
 
-    atomic_write_text(out, canonical_json(Material(**record["material"])))
-    atomic_write_text(out.with_name(out.stem + ".calibration.json"),
-                      json.dumps(record, indent=1, default=float) + "\n")
+    with together({"--out": out, "provenance": provenance_path(out)}) as tmp:
+        atomic_write_text(tmp["--out"], canonical_json(Material(**record["material"])))
+        atomic_write_text(tmp["provenance"], _record_text(record))
 
 
 @click.command(cls=options.Command)
@@ -55,9 +61,11 @@ def _write(out: pathlib.Path, record: dict) -> None:
               help="Evaluate on a Dask distributed cluster instead of local processes.")
 @click.option("--resume", is_flag=True,
               help="Start from the best point of a previous, interrupted run with the same --out.")
-@click.option("--out", "out", type=click.Path(dir_okay=False, path_type=pathlib.Path), required=True,
-              metavar="FILE", help="Calibrated material (JSON); provenance goes to FILE's "
-                                   "stem + .calibration.json.")
+@click.option("--out", "out", type=options.OutputFile((".json",)), required=True,
+              metavar="FILE", help="Calibrated material (JSON), written when the search ends; "
+                                   "provenance goes to FILE's stem + .calibration.json, the best "
+                                   "point so far to FILE's stem + .checkpoint.json after every "
+                                   "generation.")
 @options.json_opt
 def calibrate(data_path, material_path, maxiter, popsize, seed, workers, scheduler, resume, out,
               as_json):
@@ -68,59 +76,61 @@ def calibrate(data_path, material_path, maxiter, popsize, seed, workers, schedul
     jammed knit's stiffness ratio c_jam and the hardening limit gamma_mm, by differential
     evolution and a final least-squares polish.
     The objective is the mean squared error over the five keypoints (the paper's). The best
-    point so far is written after every generation, so an interrupted run (Ctrl-C) leaves a
-    usable material and can be continued with --resume.
+    point so far is written to the checkpoint after every generation; --out (and its
+    provenance) only when the search ends, so an interrupted or killed run leaves an existing
+    --out file as it was, and can be continued with --resume.
     """
     from stitchswitch.validation.measured import load_measurements
 
-    if not out.parent.is_dir():
-        raise options.InputError(f"--out: directory {str(out.parent)!r} does not exist")
+    checkpoint = checkpoint_path(out)
+    check_distinct({"--out": out, "provenance": provenance_path(out), "checkpoint": checkpoint,
+                    "DATA.csv": data_path})
     data = load_measurements(data_path)
     start = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
     start_label = str(material_path) if material_path else "default"
     train = data.split("train")
     designs = [(r.diameter_mm, r.fill) for r in train]
     measured = data.keypoints("train")
-    sidecar = out.with_name(out.stem + ".calibration.json")
     if resume:
         # DE starts again, with the previous best point as a member of its first population
         # (scipy does not expose the population to save it)
-        if not sidecar.exists():
-            raise options.InputError(f"--resume: no previous run at {sidecar}")
-        previous = json.loads(sidecar.read_text())
-        if previous["data"]["sha256"] != data.sha256:
-            raise options.InputError(f"--resume: {sidecar} was fitted to other data "
-                                     f"(sha256 {previous['data']['sha256'][:12]})")
-        start = start.replace(**previous["material"])
-        start_label = f"resumed from {sidecar}"
+        start, previous = resume_point(out, data.sha256)
+        start_label = f"resumed from {previous}"
     workers = workers or default_workers()
     settings = {"maxiter": maxiter, "popsize": popsize, "seed": seed, "workers": workers,
                 "scheduler": scheduler, "resumed": resume,
                 "objective": "MSE over h, r_a, z_a, r_b, z_b of the train rows (mm^2)"}
     t0 = time.perf_counter()
 
-    def progress(gen, material, mse):
-        _write(out, _record(material, mse, data, settings, start_label, generations=gen,
-                            elapsed_s=round(time.perf_counter() - t0, 2), message="in progress",
-                            interrupted=False))
-        click.echo(f"generation {gen}/{maxiter}: train MSE {mse:.4f} mm^2 "
-                   f"({time.perf_counter() - t0:.0f} s)", err=True)
+    def on_generation(gen, material, mse):
+        atomic_write_text(checkpoint, _record_text(_record(
+            material, mse, data, settings, start_label, generations=gen,
+            elapsed_s=round(time.perf_counter() - t0, 2), message="in progress",
+            interrupted=False)))
+        progress.status(f"generation {gen}/{maxiter}: train MSE {mse:.4f} mm^2 "
+                        f"({time.perf_counter() - t0:.0f} s)")
 
     with make_executor(workers, scheduler) as ex:
         result = cal.calibrate(designs, measured, start, maxiter=maxiter, popsize=popsize,
                                seed=seed, executor=ex if workers > 1 or scheduler else None,
-                               callback=progress)
+                               callback=on_generation)
     record = _record(result.material, result.mse_mm2, data, settings, start_label,
                      generations=result.generations, evaluations=result.evaluations,
                      elapsed_s=round(result.elapsed_s, 2), message=result.message,
                      interrupted=result.interrupted, identifiability=result.identifiability)
-    _write(out, record)
+    if result.interrupted:
+        atomic_write_text(checkpoint, _record_text(record))
+        click.echo(f"interrupted after {result.generations} generation(s): {out} left as it "
+                   f"was; the best point so far is in {checkpoint} (continue with --resume)",
+                   err=True)
+        sys.exit(130)
+    _write_final(out, record)
+    checkpoint.unlink(missing_ok=True)
     if as_json:
         click.echo(json.dumps(record, default=float))
         return
     rmse = math.sqrt(result.mse_mm2) if math.isfinite(result.mse_mm2) else float("nan")
-    state = "interrupted, best point so far" if result.interrupted else result.message
-    click.echo(f"wrote {out} ({state}); train RMSE {rmse:.3f} mm over {len(train)} rows, "
+    click.echo(f"wrote {out} ({result.message}); train RMSE {rmse:.3f} mm over {len(train)} rows, "
                f"{result.generations} generations in {result.elapsed_s:.0f} s")
     for name in cal.PARAMS:
         tag = (" (fixed: overall scale)" if name == cal.SCALE_PARAM
@@ -131,5 +141,3 @@ def calibrate(data_path, material_path, maxiter, popsize, seed, workers, schedul
         click.echo("poorly identified combinations (small singular values of the keypoint Jacobian):")
         for w in weak:
             click.echo(f"  {w['direction']}  (singular value {w['singular_value']:.2e})")
-    if result.interrupted:
-        sys.exit(130)

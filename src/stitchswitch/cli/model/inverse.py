@@ -5,7 +5,7 @@ import json
 
 import click
 
-from stitchswitch.cli import options
+from stitchswitch.cli import options, progress
 from stitchswitch.reduced.design_space.inverse import HEIGHT_TOL_MM, InverseTarget, inverse_design
 
 
@@ -90,11 +90,11 @@ def _map(material_path, map_path):
 
     from stitchswitch.reduced.design_space.precompute import DEFAULT_DIAMETERS_MM
 
-    with click.progressbar(length=DEFAULT_DIAMETERS_MM.size, file=click.get_text_stream("stderr"),
-                           label="map of this material (built once, then cached)") as bar:
+    with progress.bar(DEFAULT_DIAMETERS_MM.size,
+                      "map of this material (built once, then cached)") as bar:
         done = [0]
 
-        def progress(n):
+        def advance(n):
             bar.update(n - done[0])
             done[0] = n
-        return map_cache.map_for(material, workers=max(1, os.cpu_count() or 1), progress=progress)
+        return map_cache.map_for(material, workers=max(1, os.cpu_count() or 1), progress=advance)

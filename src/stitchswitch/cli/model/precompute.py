@@ -2,14 +2,13 @@
 from __future__ import annotations
 
 import json
-import pathlib
-import sys
 import time
 
 import click
 
-from stitchswitch.cli import options
+from stitchswitch.cli import options, progress
 from stitchswitch.executor import default_workers
+from stitchswitch.files.outputs import check_distinct, together
 from stitchswitch.reduced.design_space import precompute as build_map
 from stitchswitch.reduced.design_space import smoothness as map_check
 from stitchswitch.reduced.design_space import storage as map_io
@@ -27,10 +26,11 @@ from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
               help="Worker processes (default: one per core).")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT",
               help="Solve on a Dask distributed cluster instead of local processes.")
-@click.option("--out", "out", type=click.Path(dir_okay=False, path_type=pathlib.Path),
-              required=True, metavar="FILE", help="Output map (.npz).")
-@click.option("--plot", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
-              metavar="PNG", help="Also write the h(d, p) heatmap.")
+@click.option("--out", "out", type=options.OutputFile((".npz",)), required=True, metavar="FILE",
+              help="Output map (.npz).")
+@click.option("--plot", type=options.OutputFile((".png",)), default=None, metavar="PNG",
+              help="Also write the h(d, p) heatmap (written together with --out: both or "
+                   "neither).")
 @click.option("--cold-start", is_flag=True,
               help="Solve every point from the released state, exactly as a direct solve "
                    "(default: each diameter along increasing fill, warm-started from the "
@@ -43,26 +43,28 @@ def precompute(material_path, diameters, fills, workers, scheduler, out, plot, c
     Every point is a certified solve; points that fail the neighbour-mean smoothness test are
     listed with their explanation (buckling onset, branch change, under-resolved).
     """
+    outputs = {"--out": out, "--plot": plot}
+    check_distinct(outputs)
     material = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
     d = build_map.parse_range(diameters, "--diameters")
     p = build_map.parse_range(fills, "--fills")
     workers = workers or default_workers()
     t0 = time.perf_counter()
-    with click.progressbar(length=d.size, label=f"solving {d.size} x {p.size} designs",
-                           file=sys.stderr) as bar:
+    with progress.bar(d.size, f"solving {d.size} x {p.size} designs") as bar:
         last = [0]
 
-        def progress(done):
+        def advance(done):
             bar.update(done - last[0])
             last[0] = done
 
-        dmap = build_map.build(material, d, p, workers=workers, progress=progress,
+        dmap = build_map.build(material, d, p, workers=workers, progress=advance,
                                scheduler=scheduler, warm_start=not cold_start)
     elapsed_s = time.perf_counter() - t0
-    map_io.save_map(dmap, out)
-    if plot is not None:
-        from stitchswitch.reduced.design_space.heatmap import plot_height_map
-        plot_height_map(dmap, plot)
+    with together(outputs) as tmp:
+        map_io.save_map(dmap, tmp["--out"])
+        if plot is not None:
+            from stitchswitch.reduced.design_space.heatmap import plot_height_map
+            plot_height_map(dmap, tmp["--plot"])
     flagged = map_check.report(dmap)
     summary = {"out": str(out), "n_diameters": int(d.size), "n_fills": int(p.size),
                "elapsed_s": round(elapsed_s, 2), "workers": workers,

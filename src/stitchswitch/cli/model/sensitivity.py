@@ -3,12 +3,11 @@ from __future__ import annotations
 
 import json
 import math
-import sys
 import time
 
 import click
 
-from stitchswitch.cli import options
+from stitchswitch.cli import options, progress
 from stitchswitch.cli.output import key_value_table
 from stitchswitch.executor import default_workers
 from stitchswitch.files.jsonsafe import json_safe
@@ -42,8 +41,7 @@ def sensitivity(material_path, step, include_numerical, workers, as_json):
     workers = workers or default_workers()
     designs = sens.CALIBRATION_DESIGNS
     t0 = time.perf_counter()
-    with click.progressbar(length=len(designs), file=sys.stderr,
-                           label=f"{len(designs)} designs x {len(parameters)} parameters") as bar:
+    with progress.bar(len(designs), f"{len(designs)} designs x {len(parameters)} parameters") as bar:
         result = sens.sensitivity(material, designs, step, parameters=parameters,
                                   workers=workers, progress=lambda done: bar.update(1))
     elapsed_s = time.perf_counter() - t0

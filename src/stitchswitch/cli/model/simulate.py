@@ -10,6 +10,7 @@ from stitchswitch.cli import options
 from stitchswitch.cli.output import key_value_table
 from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.files.jsonsafe import json_safe
+from stitchswitch.files.outputs import together
 from stitchswitch.reduced.model.material_io import load_material, material_hash
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 from stitchswitch.reduced.solvers.solve import Solution, solve
@@ -24,7 +25,7 @@ log = logging.getLogger(__name__)
 @options.solver_opt
 @options.max_iter_opt
 @options.json_opt
-@click.option("--profile-csv", type=click.Path(dir_okay=False), default=None, metavar="FILE",
+@click.option("--profile-csv", type=options.OutputFile(as_str=True), default=None, metavar="FILE",
               help="Also write the profile (columns R_mm,r_mm,z_mm) to FILE.")
 def simulate(diameter_mm, fill, material_path, solver, max_iter, as_json, profile_csv):
     """Equilibrium profile of one circular patch (default: d = 40 mm, fill = 0.8).
@@ -44,10 +45,8 @@ def simulate(diameter_mm, fill, material_path, solver, max_iter, as_json, profil
                     "iterations); the result is not a certified equilibrium",
                     solver, sol.residual, sol.tol, sol.iterations)
     if profile_csv is not None:
-        try:
-            atomic_write_text(profile_csv, profile_csv_text(sol))
-        except OSError as exc:
-            raise click.FileError(profile_csv, hint=exc.strerror or str(exc)) from None
+        with together({"--profile-csv": profile_csv}) as tmp:
+            atomic_write_text(tmp["--profile-csv"], profile_csv_text(sol))
     click.echo(json.dumps(json_safe(sol.as_dict())) if as_json else table(sol, material_path))
 
 

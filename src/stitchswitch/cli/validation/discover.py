@@ -2,12 +2,12 @@
 from __future__ import annotations
 
 import pathlib
-import sys
 
 import click
 
-from stitchswitch.cli import options
+from stitchswitch.cli import options, progress
 from stitchswitch.files.atomic import atomic_write_text
+from stitchswitch.files.outputs import check_output_file, together
 
 #: The built-in demo: data from the model with hardening switched on (this strength), the
 #: workflow started from the model without it.
@@ -86,8 +86,9 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
                              de_generations=de_generations, seed=seed)
     if report_dir is not None:
         check_discovery_dir(report_dir)
-    if json_out not in (None, "-") and not pathlib.Path(json_out).absolute().parent.is_dir():
-        raise options.InputError(f"--json: directory of {json_out!r} does not exist")
+    json_file = None if json_out in (None, "-") else json_out
+    if json_file is not None:
+        check_output_file(json_file, what="--json")
     workers = workers or default_workers()
 
     with make_executor(workers) as ex:
@@ -95,8 +96,8 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
         if demo:
             from stitchswitch.validation.discovery.synthetic import START_MATERIAL, dataset_text
 
-            click.echo("generating the demo data (SYNTHETIC: hardening w_log = "
-                       f"{DEMO_VALUES[0]:g} hidden in the model)", err=True)
+            progress.status("generating the demo data (SYNTHETIC: hardening w_log = "
+                            f"{DEMO_VALUES[0]:g} hidden in the model)")
             data = parse_measurements(dataset_text(DEMO_SOURCE, DEMO_VALUES, seed=DEMO_SEED,
                                                    executor=executor), "demo (built-in)")
             start, label = START_MATERIAL, "default without hardening (w_log = 0)"
@@ -106,24 +107,20 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
             data = load_measurements(given[0])
             start = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
             label = str(material_path) if material_path else "default"
-        with click.progressbar(length=stage_count(config), label="discovery", file=sys.stderr,
-                               show_pos=True) as bar:
-            def progress(message, stage, total):
+        with progress.bar(stage_count(config), "discovery", show_pos=True) as bar:
+            def advance(message, stage, total):
                 bar.label = message
                 bar.update(stage - bar.pos)
 
-            disc = run(data, start, config, executor=executor, progress=progress,
+            disc = run(data, start, config, executor=executor, progress=advance,
                        start_label=label)
             bar.label = "done"
             bar.update(bar.length - bar.pos)
-    try:
-        rep = (write_discovery_report(disc, data, start, report_dir, label) if report_dir
-               else report_dict(disc, data, start, label))
-        if json_out not in (None, "-"):
-            atomic_write_text(json_out, report_json(rep))
-    except OSError as exc:
-        raise click.FileError(str(exc.filename or report_dir or json_out),
-                              hint=exc.strerror or str(exc)) from None
+    rep = (write_discovery_report(disc, data, start, report_dir, label) if report_dir
+           else report_dict(disc, data, start, label))
+    with together({"--json": json_file}) as tmp:
+        if json_file is not None:
+            atomic_write_text(tmp["--json"], report_json(rep))
     if json_out == "-":
         click.echo(report_json(rep), nl=False)
         return

@@ -35,11 +35,8 @@ def validate(data_path, material_path, report_dir, as_json):
     data = load_measurements(data_path)
     material = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
     check_report_dir(report_dir)
-    try:
-        rep = write_report(data, material, report_dir,
-                           material_label=str(material_path) if material_path else "default")
-    except OSError as exc:
-        raise click.FileError(str(report_dir), hint=exc.strerror or str(exc)) from None
+    rep = write_report(data, material, report_dir,
+                       material_label=str(material_path) if material_path else "default")
     click.echo(json.dumps(rep) if as_json else table(rep, report_dir))
 
 

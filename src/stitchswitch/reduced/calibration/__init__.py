@@ -3,6 +3,8 @@ parameter matters.
 
 * ``evolution``: ``calibrate`` (differential evolution and a least-squares polish),
   ``CalibrationResult``, ``identifiability``, ``predict_keypoints``, ``PARAMS``, ``BOUNDS``.
+* ``checkpoint``: ``checkpoint_path`` / ``provenance_path`` (the files next to a calibrated
+  material) and ``resume_point`` (the best material of a previous run, checked).
 * ``designs``: ``CALIBRATION_DESIGNS``, the paper's 25 calibration designs.
 * ``magnitudes``: ``fit_magnitudes``, a material fitted to the mean keypoints the paper's Table 1
   implies and to its qualitative findings (how the default material was made), ``evaluate``.
