@@ -85,6 +85,8 @@ class StitchPlan:
     commands: np.ndarray       # (n,) STITCH / JUMP / TRIM / COLOR_CHANGE / END
     threads: tuple[Thread, ...]
     stitches_per_minute: float = field(default_factory=_default_speed)
+    #: (n,) bool: the records that belong to a tie-in or tie-off (None: not recorded)
+    ties: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     @property
     def stitch_count(self) -> int:
@@ -233,15 +235,17 @@ class _Builder:
         self.prm = prm
         self.xy: list[tuple[float, float]] = []
         self.cmd: list[int] = []
+        self.tie: list[bool] = []
         self.trimmed = True
 
     @property
     def needle(self):
         return np.asarray(self.xy[-1]) if self.xy else None
 
-    def add(self, cmd, p):
+    def add(self, cmd, p, tie=False):
         self.xy.append((float(p[0]), float(p[1])))
         self.cmd.append(cmd)
+        self.tie.append(tie)
 
     def _lock(self, at, toward):
         d = np.asarray(toward) - np.asarray(at)
@@ -249,8 +253,8 @@ class _Builder:
         if n < 1e-9:
             return
         step = d / n * min(self.prm.lock_stitch_mm, n)
-        self.add(STITCH, np.asarray(at) + step)
-        self.add(STITCH, at)
+        self.add(STITCH, np.asarray(at) + step, tie=True)
+        self.add(STITCH, at, tie=True)
 
     def tie_off_and_trim(self):
         if self.trimmed:
@@ -273,7 +277,7 @@ class _Builder:
             self.tie_off_and_trim()
             if needle is None or np.linalg.norm(start - needle) > 0:
                 self.add(JUMP, start)
-            self.add(STITCH, start)              # first penetration
+            self.add(STITCH, start, tie=True)    # first penetration
             nxt = next((q for q in path[1:] if np.linalg.norm(q - start) > 1e-9), None)
             if nxt is not None:
                 self._lock(start, nxt)           # tie-in
@@ -313,4 +317,4 @@ def plan_stitches(geom: PatchGeometry, prm: StitchParams | None = None,
     b.tie_off_and_trim()
     b.add(END, b.xy[-1] if b.xy else offset)
     return StitchPlan(np.asarray(b.xy, dtype=float), np.asarray(b.cmd, dtype=np.int8),
-                      tuple(threads), prm.stitches_per_minute)
+                      tuple(threads), prm.stitches_per_minute, np.asarray(b.tie, dtype=bool))
