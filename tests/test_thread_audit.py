@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from stitchswitch.layout.embroidery import stitches as st
-from stitchswitch.layout.embroidery.thread_audit import audit
+from stitchswitch.layout.embroidery.sewing.audit import audit
 
 SQUARES = [np.array([[0, 0], [2, 0], [2, 2], [0, 2]], float),
            np.array([[3, 0], [5, 0], [5, 2], [3, 2]], float)]

@@ -2,10 +2,13 @@
 
 * **gap crossings**: thread laid over unstitched fabric. A thread segment is a move to a STITCH
   record, or a JUMP while the thread is still attached (no TRIM or colour change since the last
-  penetration: the float lies on the fabric until someone clips it). Its part outside the union
-  of the stitched pieces is its crossing length; a segment counts as a crossing when some of it
-  lies outside the pieces grown by ``tolerance_mm`` (row ends of a pull-compensated fill and
-  rounding stay inside that margin). Coordinates are rounded to the 0.1 mm the files store.
+  penetration: the float lies on the fabric until someone clips it). It is a *crossing* when
+  its two ends belong to different pieces (it joins two islands) and more than
+  ``tolerance_mm`` of it lies outside the stitched pieces (0.1 mm: gaps narrower than that, at
+  fills near 1, are not counted); its crossing length is that part. Which piece a needle
+  position belongs to is the plan's record (``StitchPlan.owners``) where it has one; otherwise
+  the piece that contains it (within 1e-6 mm; the plan is then taken unrounded, its points lie
+  exactly on or in their pieces).
 * **short stitches**: STITCH moves shorter than ``min_stitch_mm`` outside ties (a zero-length
   stitch, a second penetration in the same hole, counts).
 * **ties**: each maximal run of records the plan marks as tie (``StitchPlan.ties``); its
@@ -24,7 +27,8 @@ import shapely
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from stitchswitch.layout.embroidery import stitches as st
+from stitchswitch.layout.embroidery.sewing import records as st
+from stitchswitch.layout.embroidery.sewing.routing import electrode_regions
 
 #: needle positions closer than this are one hole (the files store 0.1 mm)
 _SAME_HOLE_MM = 0.05
@@ -54,10 +58,13 @@ class ThreadAudit:
                 "electrode_components": list(self.electrode_components)}
 
 
-def thread_segments(plan: st.StitchPlan) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(a, b, thread): start and end (k, 2) of every thread segment and its thread index."""
-    xy, cmd = np.round(plan.xy_mm * 10.0) / 10.0, plan.commands
-    a, b, thread = [], [], []
+def thread_segments(plan, rounded: bool = True):
+    """(a, b, thread, k): start and end (m, 2) of every thread segment, its thread index and
+    the record it ends at."""
+    xy, cmd = plan.xy_mm, plan.commands
+    if rounded:
+        xy = np.round(xy * 10.0) / 10.0
+    a, b, thread, at = [], [], [], []
     attached, colour = False, 0
     for k in range(len(cmd)):
         c = cmd[k]
@@ -69,11 +76,24 @@ def thread_segments(plan: st.StitchPlan) -> tuple[np.ndarray, np.ndarray, np.nda
             a.append(xy[k - 1])
             b.append(xy[k])
             thread.append(colour)
+            at.append(k)
         if c == st.STITCH:
             attached = True
     if not a:
-        return np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, dtype=int)
-    return np.asarray(a), np.asarray(b), np.asarray(thread)
+        return np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, dtype=int), np.zeros(0, dtype=int)
+    return np.asarray(a), np.asarray(b), np.asarray(thread), np.asarray(at)
+
+
+def _owners(plan, pieces) -> np.ndarray:
+    """The piece each record belongs to: the plan's record, else the containing piece."""
+    if getattr(plan, "owners", None) is not None:
+        return np.asarray(plan.owners)
+    polys = [shapely.Polygon(p).buffer(1e-6) for p in pieces]
+    tree = shapely.STRtree(polys)
+    pts, idx = tree.query(shapely.points(plan.xy_mm), predicate="within")
+    owner = np.full(len(plan.xy_mm), -1)
+    owner[pts[::-1]] = idx[::-1]                   # the lowest index where pieces touch
+    return owner
 
 
 def _outside_mm(a, b, area) -> np.ndarray:
@@ -88,7 +108,7 @@ def _outside_mm(a, b, area) -> np.ndarray:
     return out
 
 
-def _short_and_ties(plan: st.StitchPlan, min_stitch_mm: float):
+def _short_and_ties(plan, min_stitch_mm: float):
     xy = np.round(plan.xy_mm * 10.0) / 10.0
     step = np.linalg.norm(np.diff(xy, axis=0, prepend=xy[:1]), axis=1)
     stitch = plan.commands == st.STITCH
@@ -109,20 +129,6 @@ def _short_and_ties(plan: st.StitchPlan, min_stitch_mm: float):
         lengths += list(step[moved])
         k = j
     return short, counts, lengths
-
-
-def electrode_regions(centroids_mm: np.ndarray, conductive: np.ndarray,
-                      resolution_mm: float) -> list[np.ndarray]:
-    """Indices of the conductive pieces of each region (lattice neighbours by a vertex)."""
-    idx = np.flatnonzero(conductive)
-    if len(idx) == 0:
-        return []
-    c = centroids_mm[idx]
-    d = np.linalg.norm(c[:, None, :] - c[None, :, :], axis=2)
-    i, j = np.nonzero(d <= 1.2 * resolution_mm)
-    graph = coo_matrix((np.ones(len(i)), (i, j)), shape=(len(idx), len(idx)))
-    n, label = connected_components(graph, directed=False)
-    return [idx[label == r] for r in range(n)]
 
 
 def _electrode_components(plan, a, b, thread, pieces, regions, tolerance_mm) -> tuple[int, ...]:
@@ -151,22 +157,24 @@ def _electrode_components(plan, a, b, thread, pieces, regions, tolerance_mm) -> 
     return tuple(out)
 
 
-def audit(plan: st.StitchPlan, pieces_mm, conductive: np.ndarray, centroids_mm: np.ndarray,
+def audit(plan, pieces_mm, conductive: np.ndarray, centroids_mm: np.ndarray,
           resolution_mm: float, min_stitch_mm: float = 0.3,
           tolerance_mm: float = 0.1) -> ThreadAudit:
     """The audit of ``plan`` sewn over ``pieces_mm`` (hoop coordinates, as in the plan)."""
     pieces = [np.asarray(p, dtype=float) for p in pieces_mm]
     stitched = shapely.union_all([shapely.Polygon(p) for p in pieces])
-    grown = stitched.buffer(tolerance_mm)
     shapely.prepare(stitched)
-    shapely.prepare(grown)
-    a, b, thread = thread_segments(plan)
-    crossing = _outside_mm(a, b, grown) > 0
-    length = _outside_mm(a[crossing], b[crossing], stitched)
+    a, b, thread, at = thread_segments(plan)
+    owner = _owners(plan, pieces)
+    joins = np.flatnonzero(owner[at - 1] != owner[at]) if len(at) else np.zeros(0, dtype=int)
+    ua, ub, _, _ = thread_segments(plan, rounded=getattr(plan, "owners", None) is not None)
+    outside = np.zeros(len(a))
+    outside[joins] = _outside_mm(ua[joins], ub[joins], stitched)
+    crossing = outside > tolerance_mm
     short, tie_counts, tie_lengths = _short_and_ties(plan, min_stitch_mm)
     regions = electrode_regions(np.asarray(centroids_mm, dtype=float),
                                 np.asarray(conductive, dtype=bool), resolution_mm)
-    comps = _electrode_components(plan, a, b, thread, pieces, regions, tolerance_mm + 0.05)
-    return ThreadAudit(int(crossing.sum()), float(length.sum()), plan.trim_count, short,
+    comps = _electrode_components(plan, a, b, thread, pieces, regions, 0.2)
+    return ThreadAudit(int(crossing.sum()), float(outside[crossing].sum()), plan.trim_count, short,
                        len(tie_counts), min(tie_counts, default=0),
                        float(min(tie_lengths, default=0.0)), comps)
