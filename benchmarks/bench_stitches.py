@@ -25,7 +25,7 @@ in total; 0 short stitches; every tie >= 3 stitches; every electrode 1 component
 so every move between pieces is a crossing or a trim (docs/embroidery.md, "The route").
 ``--json`` prints the rows as JSON.
 
-    python benchmarks/bench_stitches.py [--json] [--only NAME]
+    python benchmarks/bench_stitches.py [--json] [--only NAME] [--travel stitch|jump|trim]
 """
 from __future__ import annotations
 
@@ -84,7 +84,7 @@ def _stitch_count(data: bytes, fmt: str) -> int:
     return sum(1 for s in pattern.stitches if s[2] & pe.COMMAND_MASK == pe.STITCH)
 
 
-def run_one(design) -> dict:
+def run_one(design, travel: str = "stitch") -> dict:
     from stitchswitch.layout.embroidery import export
     from stitchswitch.layout.embroidery.machines import default_machine
     from stitchswitch.layout.embroidery.patch_geometry import make_patch, parse_selection
@@ -93,7 +93,8 @@ def run_one(design) -> dict:
 
     name, d, p, res, cond, centre, hoop_name = design
     geom = make_patch(float(d), float(p), res, parse_selection(cond))
-    plan = plan_stitches(geom, StitchParams(), centre)
+    prm = StitchParams() if travel == "stitch" else StitchParams(travel=travel)
+    plan = plan_stitches(geom, prm, centre)
     machine = default_machine()
     hoop = machine.hoop(hoop_name) if hoop_name else machine.choose_hoop(d, d)
     offset = np.asarray(centre)
@@ -140,9 +141,11 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--json", action="store_true")
     ap.add_argument("--only", default=None, help="run only the design of this name")
+    ap.add_argument("--travel", default="stitch", choices=("stitch", "jump", "trim"),
+                    help="the travel between neighbouring pieces (default: the default)")
     args = ap.parse_args(argv)
     designs = [x for x in DESIGNS if args.only in (None, x[0])]
-    rows = [run_one(x) for x in designs]
+    rows = [run_one(x, args.travel) for x in designs]
     print(json.dumps(rows, indent=2) if args.json else table(rows))
     return 0
 

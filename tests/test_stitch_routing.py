@@ -162,3 +162,16 @@ def test_bad_travel_and_lock():
         st.StitchParams(travel="hop")
     with pytest.raises(InvalidInputError, match="lock_stitches"):
         st.StitchParams(lock_stitches=2)
+
+
+def test_conductive_pieces_planned_alone_as_fabrication_does_stay_one_thread():
+    """Fabrication plans a patch's conductive pieces as a block of their own (no conductive
+    mask): each lattice-connected group is still one thread."""
+    from stitchswitch.layout.fabrication.plan import _subset
+    geom = make_patch(40.0, 0.3, 5.0, parse_selection("ring:0,1"))
+    sub = _subset(geom, geom.conductive)
+    plan = st.plan_stitches(sub, st.StitchParams(), (30.0, -10.0))
+    assert plan.trim_count == 1
+    a = audit(plan, [p + [30.0, -10.0] for p in sub.pieces_mm], np.ones(sub.n_triangles, bool),
+              sub.centroids_mm + [30.0, -10.0], 5.0)
+    assert a.trims == 1 and a.gap_crossings >= sub.n_triangles - 1

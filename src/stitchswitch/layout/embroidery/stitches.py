@@ -6,11 +6,13 @@ Parameters and rules (docs/embroidery.md):
 
 * fills (``fills``): tatami or satin, pull compensation, underlay;
 * route (``routing``): the pieces of each thread block in Warnsdorff order from the centre
-  outward over the gap graph; every electrode (conductive region) is one thread;
+  outward over the gap graph; every lattice-connected group of a block's pieces (an electrode,
+  or all normal pieces of a plain patch) is one thread, bridged through its stitched pieces
+  where the walk gets stuck; a trim only between groups;
 * travel between neighbouring pieces (``travel``): ``stitch`` (a running stitch straight across
   the gap at its narrowest, the default), ``jump`` (a float the operator clips) or ``trim``
-  (tie-off, trim, jump, tie-in); a move to a piece that is not a neighbour is always a trim,
-  and a move inside an electrode always a stitch (a trim would cut the conductor);
+  (tie-off, trim, jump, tie-in; a bridge then becomes a trim too); a move inside the conductive
+  block is always a stitch (a trim would cut the conductor);
 * hygiene (``runs``): no stitch shorter than ``min_stitch_mm`` outside ties, locks of
   ``lock_stitches`` stitches of ``lock_stitch_mm`` (at least ``LOCK_MIN_MM`` where the piece
   allows) at both ends of every thread run;
@@ -229,11 +231,13 @@ class _Block:
         return options[int(np.argmin(cost))]
 
     def _mode(self, step) -> str:
+        """restart (a trim), bridge, stitch or jump: electrodes are always stitched; elsewhere
+        ``travel`` decides, a bridge becoming a trim or one float under ``trim`` / ``jump``."""
         if step.kind == routing.RESTART:
             return "restart"
-        if step.kind == routing.BRIDGE or self.electrode:
+        if self.electrode or self.prm.travel == "stitch":
             return "bridge" if step.kind == routing.BRIDGE else "stitch"
-        return self.prm.travel
+        return "restart" if self.prm.travel == "trim" else "jump"
 
     def sew(self, steps) -> None:
         prm = self.prm
@@ -246,7 +250,8 @@ class _Block:
         chains = [None] * len(steps)
         for k in range(1, len(steps)):
             if connected[k]:
-                seq = [steps[k - 1].piece, *steps[k].via, steps[k].piece]
+                via = steps[k].via if modes[k] == "bridge" else ()
+                seq = [steps[k - 1].piece, *via, steps[k].piece]
                 chains[k] = [routing.crossing(self.pieces[u], self.pieces[v], prm.min_stitch_mm)
                              for u, v in zip(seq[:-1], seq[1:])]
         for k, step in enumerate(steps):
@@ -268,8 +273,9 @@ class _Block:
     def _cross(self, chain, step, mode) -> None:
         """From the previous piece's exit across the gap(s) to this piece's entry."""
         cmd = JUMP if mode == "jump" else STITCH
+        via = step.via if mode == "bridge" else ()
         for h, (_, q) in enumerate(chain):
-            into = step.via[h] if h < len(step.via) else step.piece
+            into = via[h] if h < len(via) else step.piece
             room = self.pieces[into]
             self.b.extend([q], room, cmd, owner=self.index[into])
             if h + 1 < len(chain):
@@ -299,11 +305,11 @@ def plan_stitches(geom, prm: StitchParams | None = None,
             b.colour_change()
         threads.append(thread)
         electrode = thread is CONDUCTIVE_THREAD
-        regions = None
-        if electrode:
-            local = {g: k for k, g in enumerate(idx.tolist())}
-            regions = [np.array([local[g] for g in r.tolist()])
-                       for r in routing.electrode_regions(centroids, conductive, geom.resolution_mm)]
+        # every lattice-connected group of the block's pieces is one thread: an electrode must
+        # be (and a block planned on its own, as fabrication plans the conductive pieces of a
+        # patch, is recognised by its pieces alone), and the normal thread saves its trims
+        regions = routing.electrode_regions(centroids[idx], np.ones(len(idx), dtype=bool),
+                                            geom.resolution_mm)
         steps = routing.route([pieces[i] for i in idx], centroids[idx], offset,
                               geom.resolution_mm, prm.travel_run_max_mm, regions)
         block = _Block(b, prm, [pieces[i] for i in idx], ext[idx], electrode, idx.tolist())

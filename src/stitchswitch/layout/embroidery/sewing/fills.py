@@ -41,15 +41,21 @@ def _row_interval(poly: np.ndarray, y: float) -> tuple[float, float] | None:
 
 
 def _rows(poly: np.ndarray, spacing: float, extend_mm: float = 0.0):
+    """(y, x_left, x_right) of the rows at most ``spacing`` apart, each centred in its band
+    (the rows of a convex piece, all edges intersected at once)."""
     ymin, ymax = poly[:, 1].min(), poly[:, 1].max()
     n = max(1, int(math.ceil((ymax - ymin) / spacing - 1e-9)))
-    out = []
-    for k in range(n):
-        y = ymin + (ymax - ymin) * (k + 0.5) / n
-        iv = _row_interval(poly, y)
-        if iv is not None:
-            out.append((y, iv[0] - extend_mm, iv[1] + extend_mm))
-    return out
+    y = ymin + (ymax - ymin) * (np.arange(n) + 0.5) / n
+    a, b = poly, np.roll(poly, -1, axis=0)
+    lo, hi = np.minimum(a[:, 1], b[:, 1]), np.maximum(a[:, 1], b[:, 1])
+    hit = (y[:, None] >= lo[None, :]) & (y[:, None] <= hi[None, :]) & (hi > lo)[None, :]
+    dy = np.where(hi > lo, b[:, 1] - a[:, 1], 1.0)
+    x = a[None, :, 0] + (y[:, None] - a[None, :, 1]) * ((b[:, 0] - a[:, 0]) / dy)[None, :]
+    left = np.where(hit, x, np.inf).min(axis=1)
+    right = np.where(hit, x, -np.inf).max(axis=1)
+    ok = np.isfinite(left)
+    return [(float(yy), float(xl) - extend_mm, float(xr) + extend_mm)
+            for yy, xl, xr in zip(y[ok], left[ok], right[ok])]
 
 
 def tatami(poly: np.ndarray, spacing: float, max_stitch: float, min_stitch: float,

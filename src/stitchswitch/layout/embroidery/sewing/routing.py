@@ -14,11 +14,13 @@ classical heuristic for Hamiltonian paths on grid-like graphs:
 * move to an unvisited neighbour, preferring a crossing within 20 % of the shortest available,
   then the neighbour with the fewest unvisited neighbours (Warnsdorff: it leaves no stranded
   pieces behind), then the one nearest the centre;
-* when no unvisited neighbour is left: inside an electrode (``regions``) the route *bridges*
-  through the region's already stitched pieces to the nearest unvisited piece of the region
-  (shortest path, scipy's Dijkstra, on the region's lattice adjacency), so the conductor is never
-  cut; otherwise it trims and restarts at the innermost unvisited piece (nearest the needle
-  among those within one triangle side of the innermost radius).
+* when no unvisited neighbour is left and the current region (``regions``: groups of pieces
+  sewn as one thread, e.g. an electrode) still has unvisited pieces, the route *bridges*
+  through the region's already stitched pieces to the nearest of them (shortest path, scipy's
+  Dijkstra, on the region's lattice adjacency), so the thread is not cut; otherwise it trims
+  and restarts at the innermost unvisited piece (nearest the needle among those within one
+  triangle side of the innermost radius). The route never moves from one region to another
+  with the thread on.
 
 Every crossing goes straight across the gap at its narrowest (the two pieces' nearest points,
 shapely's ``shortest_line``): no crossing between two pieces can be shorter.
