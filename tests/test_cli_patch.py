@@ -107,3 +107,9 @@ def test_patch_warns_of_narrow_gaps_and_experimental_formats(tmp_path):
     assert "VP3 is experimental" in r.output
     trim = run("patch", "-d", "40", "-p", "0.6", "--travel", "trim", "-o", str(tmp_path / "t.jef"))
     assert re.search(r"gap crossings +0 ", trim.output), trim.output
+
+
+def test_help_marks_exp_and_vp3_experimental():
+    r = run("patch", "--help")
+    assert r.exit_code == 0
+    assert "EXP, VP3 experimental" in " ".join(r.output.split())
