@@ -3,7 +3,7 @@ the thread gets there.
 
 Every piece of a patch is an island (the scaled triangles leave unstitched gaps, the hinges),
 so each move from one piece to the next either lays thread across a gap (a *crossing*) or cuts
-it (a *trim*): crossings + trims = pieces - 1 per block, whatever the order. What the route
+it (a *trim*): crossings + trims >= pieces - 1 per block, whatever the order. What the route
 controls is which gaps are crossed and how often the thread must be cut. It is a path-cover
 problem on the *gap graph* (pieces joined when at most ``neighbour_mm`` apart, the weight the
 polygon distance, i.e. the shortest crossing); the route is built by Warnsdorff's rule, the
