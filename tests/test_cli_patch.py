@@ -1,3 +1,5 @@
+import re
+
 import pytest
 from click.testing import CliRunner
 
@@ -15,9 +17,12 @@ def test_patch_writes_jef_and_preview(tmp_path):
     r = run("patch", "--diameter", "40", "--fill", "0.8", "--conductive", "ring:0,1",
             "-o", str(out), "--preview", str(png))
     assert r.exit_code == 0, r.output
-    assert "stitches   3288" in r.output and "fill       0.8000" in r.output
+    assert "fill           0.8000" in r.output
+    n = int(re.search(r"stitches +(\d+)", r.output).group(1))
+    crossings = re.search(r"gap crossings +(\d+) \(([\d.]+) mm", r.output)
+    assert crossings and "electrodes     1 thread(s)" in r.output
     d = jef.decode(out.read_bytes())
-    assert d.count(dst.STITCH) == 3288 and d.count(dst.COLOR) == 1
+    assert d.count(dst.STITCH) == n and d.count(dst.COLOR) == 1
     assert d.header["hoop"] == 2                       # SQ14b -> code 2 (docs/embroidery.md)
     assert png.read_bytes().startswith(b"\x89PNG")
     first = out.read_bytes()
@@ -84,3 +89,27 @@ def test_composite_errors(tmp_path, args, message):
     assert r.exit_code == 2, r.output
     assert message in r.output and len(r.output.strip().splitlines()) == 1
     assert not out.exists()
+
+
+def test_patch_refuses_an_empty_conductive_selection_and_a_hoop_without_margin(tmp_path):
+    out = tmp_path / "p.jef"
+    r = run("patch", "-d", "40", "-p", "0.6", "--conductive", "ring:99", "-o", str(out))
+    assert r.exit_code == 2 and "Error: --conductive 'ring:99' selects no triangle" in r.output
+    r = run("patch", "-d", "138", "-p", "0.6", "--hoop", "SQ14b", "-o", str(out))
+    assert r.exit_code == 2 and "within its 5 mm margin" in r.output
+    assert not out.exists()
+
+
+def test_patch_warns_of_narrow_gaps_and_experimental_formats(tmp_path):
+    r = run("patch", "-d", "40", "-p", "0.6", "--resolution", "2", "-o", str(tmp_path / "p.vp3"))
+    assert r.exit_code == 0, r.output
+    assert "gaps of 0.26 mm between triangles are narrower than 0.3 mm" in r.output
+    assert "VP3 is experimental" in r.output
+    trim = run("patch", "-d", "40", "-p", "0.6", "--travel", "trim", "-o", str(tmp_path / "t.jef"))
+    assert re.search(r"gap crossings +0 ", trim.output), trim.output
+
+
+def test_help_marks_exp_and_vp3_experimental():
+    r = run("patch", "--help")
+    assert r.exit_code == 0
+    assert "EXP, VP3 experimental" in " ".join(r.output.split())

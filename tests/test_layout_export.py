@@ -1,4 +1,3 @@
-import math
 
 import numpy as np
 import pyembroidery as pe
@@ -25,12 +24,14 @@ def plan():
 @pytest.fixture(scope="module")
 def long_jump_plan():
     """Two far-apart pieces: a 60 mm jump that every byte format must split."""
+    from stitchswitch.layout.embroidery.sewing.runs import Builder
     tri = np.array([[0.0, 0.0], [5.0, 0.0], [2.5, 4.33]])
-    b = st._Builder(st.StitchParams())
-    b.sew(st.fill_piece(tri, st.StitchParams()))
-    b.sew(st.fill_piece(tri + [60.0, 0.0], st.StitchParams()))
-    b.tie_off_and_trim()
-    b.add(st.END, b.xy[-1])
+    prm = st.StitchParams()
+    b = Builder(prm)
+    b.extend(st.fill_piece(tri, prm), tri)
+    b.end_run()
+    b.extend(st.fill_piece(tri + [60.0, 0.0], prm), tri + [60.0, 0.0])
+    b.finish((0.0, 0.0))
     return st.StitchPlan(np.asarray(b.xy), np.asarray(b.cmd, dtype=np.int8),
                          (st.NORMAL_THREAD,))
 
@@ -50,7 +51,7 @@ def _check(decoded, plan, max_move):
     np.testing.assert_allclose([x0 / 10, y0 / 10], ex[0], atol=0.1 + 1e-9)
     np.testing.assert_allclose([x1 / 10, y1 / 10], ex[1], atol=0.1 + 1e-9)
     for dx, dy in decoded.moves((dst.STITCH, dst.JUMP)):
-        assert math.hypot(dx, dy) <= max_move
+        assert max(abs(dx), abs(dy)) <= max_move          # the formats' limit is per axis
     assert decoded.records[-1][0] == dst.END
 
 
@@ -128,3 +129,36 @@ def test_preview(plan, fmt, tmp_path):
     if fmt == "svg":
         assert data == preview.render(plan, "svg", 40.0)
         assert b"stroke-dasharray" in data          # the jumps
+
+
+def _signed_bounds(decoded):
+    x0, y0, x1, y1 = decoded.extents()
+    return x0, y0, x1, y1
+
+
+@pytest.mark.parametrize("centre", [(0.0, 0.0), (35.0, -20.0)])
+def test_headers_hold_the_real_bounds_about_the_hoop_centre(centre):
+    """JEF left/top/right/bottom and DST +X/-X/+Y/-Y are the signed distances of the stitch
+    bounds from the hoop centre, decoded independently (an off-centre patch: nothing left of
+    the centre, so -X is negative)."""
+    import struct
+    p = st.plan_stitches(make_patch(30.0, 0.6, 5.0), center_mm=centre)
+    hoop = default_machine().hoop("RE20b")
+    data = export.encode(p, "jef", hoop)
+    x0, y0, x1, y1 = _signed_bounds(jef.decode(data))
+    assert struct.unpack_from("<4i", data, 36) == (-x0, y1, x1, -y0)
+    d = dst.decode(export.encode(p, "dst", label="button firm 1"))
+    x0, y0, x1, y1 = _signed_bounds(d)
+    assert [int(d.header[k]) for k in ("+X", "-X", "+Y", "-Y")] == [x1, -x0, y1, -y0]
+    assert d.header["LA"] == "button firm 1"
+    if centre[0] > 15:
+        assert int(d.header["-X"]) < 0
+
+
+def test_hoop_without_a_published_code_gets_the_smallest_field_holding_the_design():
+    from stitchswitch.layout.embroidery.hoop_spec import Hoop, jef_code_for
+    big = Hoop("RE36b", 200, 360, None)
+    assert jef_code_for(big, (-20, -20, 20, 20)) == (1, False)        # 50 x 50
+    assert jef_code_for(big, (-20, -20, 60, 20)) == (3, False)        # 120 wide: 126 x 110
+    assert jef_code_for(big, (-90, -150, 90, 150)) == (4, False)      # none holds it: 200x200
+    assert jef_code_for(default_machine().hoop("SQ14b"), (0, 0, 1, 1)) == (2, True)

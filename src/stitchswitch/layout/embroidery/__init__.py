@@ -4,8 +4,10 @@
   pipeline from a region to stitched pieces at a fill); ``patch_geometry``:
   ``make_patch(d, p)`` and the conductive selections; ``patch_design``: ``geometry_for`` a
   design-file patch (plain, composite, outline).
-* ``stitches``: ``plan_stitches`` (tatami and satin fill, ties, travel, trims) and
-  ``StitchParams``; ``ordering``: the visiting order.
+* ``stitches``: ``plan_stitches`` (the routed thread over the pieces, fills, ties, travel,
+  trims) and ``StitchParams``; ``sewing/``: its parts (fills, route, thread runs, the audit of
+  a plan); ``ordering``: a short visiting order of points (nearest neighbour + 2-opt, used for
+  the hoopings' order).
 * ``export``: the format registry (``register_format``, ``get_format``, ``write``);
   ``stitch_preview``: SVG/PNG of a stitch plan; ``file_summary``: ``summarise`` an embroidery
   file from anywhere (counts, extents, fitting hoops), refusing malformed ones.

@@ -68,16 +68,23 @@ class Machine:
         """The hoops whose sewing field holds a design of this extent (margin not applied)."""
         return [h for h in self.hoops if h.fits(width_mm, height_mm)]
 
-    def choose_hoop(self, width_mm: float, height_mm: float, name: str | None = None) -> Hoop:
+    def choose_hoop(self, width_mm: float, height_mm: float, name: str | None = None,
+                    margin: bool = False) -> Hoop:
         """The hoop ``name`` (checked to hold the design), or else the smallest (by area) that
-        holds it."""
+        holds it; with ``margin`` the design must fit the usable area (field minus margin)."""
+        def holds(h: Hoop) -> bool:
+            if not margin:
+                return h.fits(width_mm, height_mm)
+            w, hh = h.usable_mm()
+            return width_mm <= w + 1e-9 and height_mm <= hh + 1e-9
         if name is not None:
             hoop = self.hoop(name)
-            if not hoop.fits(width_mm, height_mm):
+            if not holds(hoop):
+                within = f" within its {hoop.margin_mm:g} mm margin" if margin else ""
                 raise InvalidInputError(f"a {width_mm:.1f} x {height_mm:.1f} mm design does not "
-                                        f"fit the hoop {hoop}")
+                                        f"fit the hoop {hoop}{within}")
             return hoop
-        fit = self.hoops_fitting(width_mm, height_mm)
+        fit = [h for h in self.hoops if holds(h)]
         if not fit:
             raise InvalidInputError(f"a {width_mm:.1f} x {height_mm:.1f} mm design fits no hoop; "
                                     f"the largest is {self.largest_hoop()}")

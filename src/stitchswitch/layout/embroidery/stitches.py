@@ -1,21 +1,22 @@
-"""Stitch generation: every triangle piece filled with real fill stitches.
+"""Stitch plans: every piece filled with real fill stitches, joined by one routed thread.
 
 A stitch plan is a list of needle records in hoop coordinates (mm, y up): ``STITCH`` (move and
 penetrate), ``JUMP`` (move without penetrating), ``TRIM``, ``COLOR_CHANGE`` and a final ``END``.
 Parameters and rules (docs/embroidery.md):
 
-* tatami fill: horizontal rows ``row_spacing_mm`` apart, sewn back and forth; along a row the
-  needle penetrates at most ``max_stitch_mm`` apart on a grid shifted by a third of a stitch from
-  row to row (the staggered tatami texture); no stitch shorter than ``min_stitch_mm`` inside a row;
-* satin for small pieces: a piece whose width (x extent) is at most ``satin_max_width_mm`` is sewn
-  as a zigzag from edge to edge, one stitch per half row spacing;
-* optional underlay: a running stitch round the piece inset by ``underlay_inset_mm``;
-* tie-in / tie-off: after every jump and before every trim, two lock stitches of
-  ``lock_stitch_mm`` (there and back along the first / last stitch);
-* travel: to the next piece by one running stitch if it is at most ``travel_run_max_mm`` away,
-  otherwise tie-off, trim and jump;
-* order: nearest neighbour + 2-opt over the triangle centroids (``ordering``), each thread
-  colour separately; the normal thread first, then a colour change to the conductive thread.
+* fills (``fills``): tatami or satin, pull compensation, underlay;
+* route (``routing``): the pieces of each thread block in Warnsdorff order from the centre
+  outward over the gap graph; every lattice-connected group of a block's pieces (an electrode,
+  or all normal pieces of a plain patch) is one thread, bridged through its stitched pieces
+  where the walk gets stuck; a trim only between groups;
+* travel between neighbouring pieces (``travel``): ``stitch`` (a running stitch straight across
+  the gap at its narrowest, the default), ``jump`` (a float the operator clips) or ``trim``
+  (tie-off, trim, jump, tie-in; a bridge then becomes a trim too); a move inside the conductive
+  block is always a stitch (a trim would cut the conductor);
+* hygiene (``runs``): no stitch shorter than ``min_stitch_mm`` outside ties, locks of
+  ``lock_stitches`` stitches of ``lock_stitch_mm`` (at least ``LOCK_MIN_MM`` where the piece
+  allows) at both ends of every thread run;
+* the normal thread first, then a colour change to the conductive thread.
 """
 from __future__ import annotations
 
@@ -23,13 +24,17 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+import shapely
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery.machines import default_machine
-from stitchswitch.layout.embroidery.ordering import visiting_order
-from stitchswitch.layout.embroidery.patch_geometry import PatchGeometry
+from stitchswitch.layout.embroidery.sewing import routing
+from stitchswitch.layout.embroidery.sewing.fills import fill_piece
+from stitchswitch.layout.embroidery.sewing.records import COLOR_CHANGE, END, JUMP, STITCH, TRIM
+from stitchswitch.layout.embroidery.sewing.runs import Builder
 
-STITCH, JUMP, TRIM, COLOR_CHANGE, END = 0, 1, 2, 3, 4
+__all__ = ["STITCH", "JUMP", "TRIM", "COLOR_CHANGE", "END", "StitchParams", "StitchPlan",
+           "Thread", "NORMAL_THREAD", "CONDUCTIVE_THREAD", "plan_stitches", "fill_piece"]
 
 
 def _default_speed() -> float:
@@ -52,21 +57,52 @@ CONDUCTIVE_THREAD = Thread("conductive thread", (200, 120, 20))
 ROW_SPACING_RANGE_MM = (0.1, 5.0)
 
 
+#: the ways of travelling between neighbouring pieces (``StitchParams.travel``)
+TRAVELS = ("stitch", "jump", "trim")
+#: a lock stitch is at least this long where the piece allows it (Ink/Stitch's locks: 0.5-1.5 mm)
+LOCK_MIN_MM = 0.5
+#: pieces smaller than this are sewn, but warned about: a fill of a few needle holes
+SMALL_PIECE_AREA_MM2 = 1.0
+#: pull compensation is at most this fraction of the gap to the nearest piece (per side)
+PULL_COMPENSATION_GAP_FRACTION = 0.25
+
+
 @dataclass(frozen=True)
 class StitchParams:
     row_spacing_mm: float = 0.4
     max_stitch_mm: float = 3.5
     min_stitch_mm: float = 0.3
     satin_max_width_mm: float = 3.5
-    underlay: bool = False
+    underlay: bool = True
     underlay_inset_mm: float = 0.4
     lock_stitch_mm: float = 0.7
-    travel_run_max_mm: float = 2.0
+    lock_stitches: int = 4
+    #: travel between neighbouring pieces: "stitch", "jump" or "trim"
+    travel: str = "stitch"
+    #: pieces at most this far apart are neighbours (a move between them is a travel)
+    travel_run_max_mm: float = 2.5
+    #: running-stitch length of travel inside a piece and across a bridge
+    run_stitch_mm: float = 2.0
+    #: row ends lengthened by this (mm per side) against the knit's pull-in
+    pull_compensation_mm: float = 0.1
     stitches_per_minute: float = field(default_factory=_default_speed)
+    #: sewing-time allowances (s): a trim (stop, cut, restart), a colour change (rethread or
+    #: change the bobbin, by hand)
+    trim_s: float = 6.0
+    colour_change_s: float = 60.0
 
     def __post_init__(self):
+        if self.travel not in TRAVELS:
+            raise InvalidInputError(f"travel {self.travel!r} is not one of " + ", ".join(TRAVELS))
+        if not (isinstance(self.lock_stitches, int) and self.lock_stitches >= 3):
+            raise InvalidInputError(f"lock_stitches = {self.lock_stitches!r} must be an integer >= 3")
+        for name in ("pull_compensation_mm", "trim_s", "colour_change_s"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v >= 0):
+                raise InvalidInputError(f"stitch parameter {name} = {v!r} must be >= 0")
         for name in ("row_spacing_mm", "max_stitch_mm", "min_stitch_mm", "satin_max_width_mm",
-                     "lock_stitch_mm", "stitches_per_minute"):
+                     "lock_stitch_mm", "stitches_per_minute", "travel_run_max_mm",
+                     "run_stitch_mm"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
                 raise InvalidInputError(f"stitch parameter {name} = {v!r} must be positive")
@@ -76,6 +112,9 @@ class StitchParams:
                                     f"outside [{lo:g}, {hi:g}] mm")
         if self.min_stitch_mm >= self.max_stitch_mm:
             raise InvalidInputError("min_stitch_mm must be smaller than max_stitch_mm")
+        if not self.min_stitch_mm <= self.run_stitch_mm <= self.max_stitch_mm:
+            raise InvalidInputError(f"run_stitch_mm = {self.run_stitch_mm:g} must lie in "
+                                    "[min_stitch_mm, max_stitch_mm]")
 
 
 @dataclass(frozen=True)
@@ -85,6 +124,15 @@ class StitchPlan:
     commands: np.ndarray       # (n,) STITCH / JUMP / TRIM / COLOR_CHANGE / END
     threads: tuple[Thread, ...]
     stitches_per_minute: float = field(default_factory=_default_speed)
+    #: (n,) bool: the records that belong to a tie-in or tie-off (None: not recorded)
+    ties: np.ndarray | None = field(default=None, repr=False, compare=False)
+    trim_s: float = 6.0
+    colour_change_s: float = 60.0
+    #: pieces under ``SMALL_PIECE_AREA_MM2`` that were sewn (warned about)
+    small_pieces: int = 0
+    #: (n,) int: the piece (``geom.pieces_mm`` index) each record belongs to, -1 over a gap
+    #: (None: not recorded)
+    owners: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     @property
     def stitch_count(self) -> int:
@@ -114,8 +162,10 @@ class StitchPlan:
 
     @property
     def sewing_time_min(self) -> float:
-        """Stitch count / machine speed; trims and the colour change take extra time."""
-        return self.stitch_count / self.stitches_per_minute
+        """Stitches at the machine's speed, plus ``trim_s`` per trim and ``colour_change_s``
+        per colour change (docs/embroidery.md)."""
+        return (self.stitch_count / self.stitches_per_minute
+                + (self.trim_count * self.trim_s + self.color_changes * self.colour_change_s) / 60.0)
 
     def extents_mm(self) -> tuple[float, float, float, float]:
         """(xmin, ymin, xmax, ymax) over all needle positions except END."""
@@ -126,191 +176,147 @@ class StitchPlan:
     def fabrication_notes(self) -> list[str]:
         notes = [f"thread {i + 1}: {t.name}" for i, t in enumerate(self.threads)]
         if any(t is CONDUCTIVE_THREAD for t in self.threads):
-            notes.append("at the colour change, thread the conductive thread; the paper sews "
-                         "conductive regions with conductive thread in the bobbin (appendix A, "
-                         "Fig. 13): wind a conductive bobbin for that block")
+            notes.append(CONDUCTIVE_BOBBIN_NOTE)
+        if self.small_pieces:
+            notes.append(f"warning: {self.small_pieces} piece(s) under {SMALL_PIECE_AREA_MM2:g} "
+                         "mm^2, a fill of a few needle holes (coarser triangles or a higher fill "
+                         "avoid them)")
         return notes
 
 
-# --- filling one convex piece --------------------------------------------------------------
-
-def _row_interval(poly: np.ndarray, y: float) -> tuple[float, float] | None:
-    xs = []
-    for (x0, y0), (x1, y1) in zip(poly, np.roll(poly, -1, axis=0)):
-        if (y0 <= y <= y1) or (y1 <= y <= y0):
-            if y1 == y0:
-                xs += [x0, x1]
-            else:
-                xs.append(x0 + (y - y0) * (x1 - x0) / (y1 - y0))
-    if not xs:
-        return None
-    return min(xs), max(xs)
+#: where the conductive bobbin goes in and when the normal one comes back
+CONDUCTIVE_BOBBIN_NOTE = (
+    "conductive block: the paper sews conductive regions with conductive thread in the bobbin "
+    "(appendix A, Fig. 13). At the colour change stop, put the conductive bobbin in (and the "
+    "conductive thread's top colour); when the conductive block ends, put the normal bobbin "
+    "back before the next normal-thread block or the next hooping")
 
 
-def _rows(poly: np.ndarray, spacing: float):
-    ymin, ymax = poly[:, 1].min(), poly[:, 1].max()
-    n = max(1, int(math.ceil((ymax - ymin) / spacing - 1e-9)))
-    out = []
-    for k in range(n):
-        y = ymin + (ymax - ymin) * (k + 0.5) / n
-        iv = _row_interval(poly, y)
-        if iv is not None:
-            out.append((y, iv[0], iv[1]))
-    return out
-
-
-def _tatami(poly: np.ndarray, prm: StitchParams) -> list[tuple[float, float]]:
-    pts = []
-    L = prm.max_stitch_mm
-    for k, (y, xl, xr) in enumerate(_rows(poly, prm.row_spacing_mm)):
-        phase = (k % 3) / 3.0
-        m0 = math.ceil((xl + prm.min_stitch_mm) / L - phase)
-        grid = [(m + phase) * L for m in range(m0, m0 + int((xr - xl) / L) + 2)]
-        inner = [x for x in grid if xl + prm.min_stitch_mm <= x <= xr - prm.min_stitch_mm]
-        row = [xl] + inner + [xr]
-        # the phase grid is at most L apart; guard the ends against numerical slack
-        full = [row[0]]
-        for x in row[1:]:
-            n = max(1, int(math.ceil((x - full[-1]) / L - 1e-9)))
-            full += [full[-1] + (x - full[-1]) * (i + 1) / n for i in range(n)]
-        if k % 2:
-            full = full[::-1]
-        pts += [(x, y) for x in full]
-    return pts
-
-
-def _satin(poly: np.ndarray, prm: StitchParams) -> list[tuple[float, float]]:
-    pts = []
-    for k, (y, xl, xr) in enumerate(_rows(poly, prm.row_spacing_mm / 2)):
-        pts.append((xl, y) if k % 2 == 0 else (xr, y))
-    return pts
-
-
-def _underlay(poly: np.ndarray, prm: StitchParams) -> list[tuple[float, float]]:
-    c = poly.mean(axis=0)
-    e = np.roll(poly, -1, axis=0) - poly
-    n = np.column_stack([e[:, 1], -e[:, 0]]) / np.linalg.norm(e, axis=1)[:, None]
-    inradius = float(np.min(np.abs(np.einsum("ij,ij->i", c - poly, n))))
-    f = 1.0 - prm.underlay_inset_mm / inradius
-    if f <= 0.2:
-        return []
-    ring = c + f * (poly - c)
-    pts = []
-    for a, b in zip(ring, np.roll(ring, -1, axis=0)):
-        n_seg = max(1, int(math.ceil(np.linalg.norm(b - a) / prm.max_stitch_mm)))
-        pts += [tuple(a + (b - a) * i / n_seg) for i in range(n_seg)]
-    pts.append(tuple(ring[0]))
-    return pts
-
-
-def fill_piece(poly: np.ndarray, prm: StitchParams, flip_x: bool = False,
-               flip_y: bool = False) -> np.ndarray:
-    """Needle penetrations filling one convex piece; the flips choose the starting corner."""
-    p = np.asarray(poly, dtype=float).copy()
-    sx, sy = (-1.0 if flip_x else 1.0), (-1.0 if flip_y else 1.0)
-    q = p * [sx, sy]
-    if sx * sy < 0:
-        q = q[::-1]                     # keep counter-clockwise after a reflection
-    width = q[:, 0].max() - q[:, 0].min()
-    body = _satin(q, prm) if width <= prm.satin_max_width_mm else _tatami(q, prm)
-    if not body:
-        body = [tuple(q.mean(axis=0))]
-    pts = body
-    if prm.underlay and width > prm.satin_max_width_mm:
-        ul = _underlay(q, prm)
-        if ul:
-            start = np.asarray(body[0])
-            k = int(np.argmin(np.linalg.norm(np.asarray(ul[:-1]) - start, axis=1)))
-            ring = ul[:-1]
-            pts = ring[k:] + ring[:k] + [ring[k]] + body
-    return np.asarray(pts) * [sx, sy]
 
 
 # --- the plan --------------------------------------------------------------------------
 
-class _Builder:
-    def __init__(self, prm: StitchParams):
-        self.prm = prm
-        self.xy: list[tuple[float, float]] = []
-        self.cmd: list[int] = []
-        self.trimmed = True
-
-    @property
-    def needle(self):
-        return np.asarray(self.xy[-1]) if self.xy else None
-
-    def add(self, cmd, p):
-        self.xy.append((float(p[0]), float(p[1])))
-        self.cmd.append(cmd)
-
-    def _lock(self, at, toward):
-        d = np.asarray(toward) - np.asarray(at)
-        n = np.linalg.norm(d)
-        if n < 1e-9:
-            return
-        step = d / n * min(self.prm.lock_stitch_mm, n)
-        self.add(STITCH, np.asarray(at) + step)
-        self.add(STITCH, at)
-
-    def tie_off_and_trim(self):
-        if self.trimmed:
-            return
-        k = len(self.xy) - 1
-        while k > 0 and np.allclose(self.xy[k - 1], self.xy[-1]):
-            k -= 1
-        if k > 0:
-            self._lock(self.xy[-1], self.xy[k - 1])
-        self.add(TRIM, self.xy[-1])
-        self.trimmed = True
-
-    def sew(self, path: np.ndarray):
-        start = path[0]
-        needle = self.needle
-        if (not self.trimmed and needle is not None
-                and np.linalg.norm(start - needle) <= self.prm.travel_run_max_mm):
-            self.add(STITCH, start)              # travel as one running stitch
-        else:
-            self.tie_off_and_trim()
-            if needle is None or np.linalg.norm(start - needle) > 0:
-                self.add(JUMP, start)
-            self.add(STITCH, start)              # first penetration
-            nxt = next((q for q in path[1:] if np.linalg.norm(q - start) > 1e-9), None)
-            if nxt is not None:
-                self._lock(start, nxt)           # tie-in
-            self.trimmed = False
-        for q in path[1:]:
-            self.add(STITCH, q)
+def _pull_compensation(polys, prm: StitchParams) -> np.ndarray:
+    """Per piece: the pull compensation, at most ``PULL_COMPENSATION_GAP_FRACTION`` of the gap
+    to the nearest other piece (so compensated rows never close a hinge)."""
+    ext = np.full(len(polys), prm.pull_compensation_mm)
+    if len(polys) < 2 or prm.pull_compensation_mm == 0:
+        return ext
+    tree = shapely.STRtree(polys)
+    src, dst = tree.query_nearest(polys, exclusive=True, all_matches=False)
+    gap = np.full(len(polys), np.inf)
+    gap[src] = shapely.distance(polys[src], polys[dst])
+    return np.minimum(ext, PULL_COMPENSATION_GAP_FRACTION * gap)
 
 
-def plan_stitches(geom: PatchGeometry, prm: StitchParams | None = None,
+def _run_inside(a: np.ndarray, b: np.ndarray, step: float) -> list[np.ndarray]:
+    """Running stitches from ``a`` to ``b`` (a straight line: inside a convex piece)."""
+    n = max(1, int(math.ceil(np.linalg.norm(b - a) / step - 1e-9)))
+    return [a + (b - a) * i / n for i in range(1, n + 1)]
+
+
+class _Block:
+    """Sews the routed pieces of one thread block into the builder."""
+
+    def __init__(self, b: Builder, prm: StitchParams, pieces, ext, electrode: bool, index):
+        self.b, self.prm, self.pieces, self.ext, self.electrode = b, prm, pieces, ext, electrode
+        self.index = index                  # block piece -> geometry piece
+        self.counts = {"stitch": 0, "jump": 0, "trim": 0, "bridge": 0, "restart": 0}
+
+    def _variant(self, i, entry, exit_):
+        options = [fill_piece(self.pieces[i], self.prm, fx, fy, self.ext[i])
+                   for fy in (False, True) for fx in (False, True)]
+        cost = [(np.linalg.norm(v[0] - entry) if entry is not None else 0.0)
+                + (np.linalg.norm(v[-1] - exit_) if exit_ is not None else 0.0) for v in options]
+        return options[int(np.argmin(cost))]
+
+    def _mode(self, step) -> str:
+        """restart (a trim), bridge, stitch or jump: electrodes are always stitched; elsewhere
+        ``travel`` decides, a bridge becoming a trim or one float under ``trim`` / ``jump``."""
+        if step.kind == routing.RESTART:
+            return "restart"
+        if self.electrode or self.prm.travel == "stitch":
+            return "bridge" if step.kind == routing.BRIDGE else "stitch"
+        return "restart" if self.prm.travel == "trim" else "jump"
+
+    def sew(self, steps) -> None:
+        prm = self.prm
+        modes = [self._mode(s) for s in steps]
+        connected = [m in ("stitch", "jump", "bridge") for m in modes]
+        for m in modes:
+            self.counts[m if m != "restart" else "restart"] += 1
+        # the crossings: (exit point of the previous piece, entry point of this one) per step,
+        # bridges through their stitched pieces
+        chains = [None] * len(steps)
+        for k in range(1, len(steps)):
+            if connected[k]:
+                via = steps[k].via if modes[k] == "bridge" else ()
+                seq = [steps[k - 1].piece, *via, steps[k].piece]
+                chains[k] = [routing.crossing(self.pieces[u], self.pieces[v], prm.min_stitch_mm)
+                             for u, v in zip(seq[:-1], seq[1:])]
+        for k, step in enumerate(steps):
+            i = step.piece
+            entry = chains[k][-1][1] if chains[k] else None
+            exit_ = chains[k + 1][0][0] if k + 1 < len(steps) and chains[k + 1] else None
+            if not connected[k]:
+                self.b.end_run()
+            path = self._variant(i, entry, exit_)
+            if entry is not None:
+                self._cross(chains[k], steps[k], modes[k])
+                pts = _run_inside(entry, path[0], prm.run_stitch_mm) + list(path)
+            else:
+                pts = list(path)
+            if exit_ is not None:
+                pts += _run_inside(path[-1], exit_, prm.run_stitch_mm)
+            self.b.extend(pts, self.pieces[i], owner=self.index[i])
+
+    def _cross(self, chain, step, mode) -> None:
+        """From the previous piece's exit across the gap(s) to this piece's entry."""
+        cmd = JUMP if mode == "jump" else STITCH
+        via = step.via if mode == "bridge" else ()
+        for h, (_, q) in enumerate(chain):
+            into = via[h] if h < len(via) else step.piece
+            room = self.pieces[into]
+            self.b.extend([q], room, cmd, owner=self.index[into])
+            if h + 1 < len(chain):
+                self.b.extend(_run_inside(q, chain[h + 1][0], self.prm.run_stitch_mm), room,
+                              owner=self.index[into])
+
+
+def plan_stitches(geom, prm: StitchParams | None = None,
                   center_mm: tuple[float, float] = (0.0, 0.0)) -> StitchPlan:
-    """The stitch plan of a patch: normal pieces, colour change, conductive pieces, END."""
+    """The stitch plan of a patch: normal pieces, colour change, conductive pieces, END; each
+    block routed (``routing.route``) and sewn as thread runs (``runs``)."""
     prm = prm or StitchParams()
-    b = _Builder(prm)
-    threads = []
-    groups = [(NORMAL_THREAD, ~geom.conductive), (CONDUCTIVE_THREAD, geom.conductive)]
     offset = np.asarray(center_mm, dtype=float)
+    pieces = [np.asarray(p, dtype=float) + offset for p in geom.pieces_mm]
+    centroids = np.asarray(geom.centroids_mm, dtype=float) + offset
+    polys = np.array([shapely.Polygon(p) for p in pieces] + [None], dtype=object)[:-1]
+    ext = _pull_compensation(polys, prm)
+    b = Builder(prm)
+    threads = []
+    conductive = np.asarray(geom.conductive, dtype=bool)
+    groups = [(NORMAL_THREAD, ~conductive), (CONDUCTIVE_THREAD, conductive)]
     for thread, mask in groups:
         idx = np.flatnonzero(mask)
         if len(idx) == 0:
             continue
         if threads:
-            b.tie_off_and_trim()
-            b.add(COLOR_CHANGE, b.xy[-1])
+            b.colour_change()
         threads.append(thread)
-        order = idx[visiting_order(geom.centroids_mm[idx])]
-        for i in order:
-            poly = geom.pieces_mm[i] + offset
-            variants = [fill_piece(poly, prm, fx, fy) for fy in (False, True)
-                        for fx in (False, True)]
-            needle = b.needle
-            if needle is None:
-                path = variants[0]
-            else:
-                dist = [np.linalg.norm(v[0] - needle) for v in variants]
-                path = variants[int(np.argmin(dist))]
-            b.sew(path)
-    b.tie_off_and_trim()
-    b.add(END, b.xy[-1] if b.xy else offset)
-    return StitchPlan(np.asarray(b.xy, dtype=float), np.asarray(b.cmd, dtype=np.int8),
-                      tuple(threads), prm.stitches_per_minute)
+        electrode = thread is CONDUCTIVE_THREAD
+        # every lattice-connected group of the block's pieces is one thread: an electrode must
+        # be (and a block planned on its own, as fabrication plans the conductive pieces of a
+        # patch, is recognised by its pieces alone), and the normal thread saves its trims
+        regions = routing.electrode_regions(centroids[idx], np.ones(len(idx), dtype=bool),
+                                            geom.resolution_mm)
+        steps = routing.route([pieces[i] for i in idx], centroids[idx], offset,
+                              geom.resolution_mm, prm.travel_run_max_mm, regions)
+        block = _Block(b, prm, [pieces[i] for i in idx], ext[idx], electrode, idx.tolist())
+        block.sew(steps)
+    b.finish(offset)
+    small = int(np.count_nonzero(np.asarray(geom.areas_mm2) < SMALL_PIECE_AREA_MM2))
+    return StitchPlan(np.asarray(b.xy, dtype=float).reshape(-1, 2),
+                      np.asarray(b.cmd, dtype=np.int8), tuple(threads),
+                      prm.stitches_per_minute, np.asarray(b.tie, dtype=bool),
+                      prm.trim_s, prm.colour_change_s, small, np.asarray(b.owner, dtype=int))

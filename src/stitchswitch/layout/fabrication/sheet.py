@@ -57,7 +57,8 @@ def _thread_text(t: Thread, esc=str) -> str:
     patches = ", ".join(map(esc, t.patches))
     if t.role == "conductive":
         return (f"conductive {t.colour} (conductive thread in the bobbin for this block: "
-                f"change the bobbin at the colour change) for {patches}")
+                f"put the conductive bobbin in at the colour change before this block, and the "
+                f"normal bobbin back when it ends) for {patches}")
     return f"top {t.colour} for {patches}"
 
 
