@@ -26,8 +26,8 @@ The population is updated once per generation (scipy's "deferred" updating) on o
 many, so the fit does not depend on the number of workers (tests/test_calibration.py).
 
 Two resolutions. The search runs at ``SEARCH_NODES`` nodes (``search_material``: the same
-domain and physics, a coarser spacing), where one solve costs about a quarter of one at the
-default 300 nodes; the keypoints of the 25 calibration designs move by 0.01-0.15 mm on average
+domain and physics, a coarser spacing), where the 25 calibration designs solve in about 40 %
+of the time they take at the default 300 nodes; the keypoints of the 25 calibration designs move by 0.01-0.15 mm on average
 between the two (at most 0.6 mm, in z_b), under the measurement noise. The polish, the
 reported MSE and the identifiability use the start material's own resolution, so the result is
 the fine model's: the polish runs first at the search resolution (cheap, to its minimum), then
@@ -75,6 +75,11 @@ DEFAULT_FREE = tuple(n for n in PARAMS if n != SCALE_PARAM)
 POLISH_EVALUATIONS = 60
 #: Nodes of the differential-evolution search (module docstring, "Two resolutions").
 SEARCH_NODES = 150
+#: Newton budget of the search's solves: a solve that needs more counts as not certified (the
+#: objective's penalty). Such solves come from random members of the first generations (6 %
+#: of them over the bounds; at most 48 iterations at the default and the synthetic true
+#: material); the budget keeps them from costing 500 iterations and the release continuation.
+SEARCH_MAX_ITER = 150
 WEAK_RATIO = 1e-2
 #: Penalty (mm^2) added per training design whose solve is not certified.
 UNCONVERGED_PENALTY = 100.0
@@ -94,13 +99,14 @@ def _search_bounds(free):
              else BOUNDS[n][:2]) for n in free]
 
 
-def predict_keypoints(material: Material, designs) -> tuple[np.ndarray, int]:
-    """(n, 5) keypoints of ``designs`` [(d, p), ...] and how many solves were not certified."""
+def predict_keypoints(material: Material, designs, max_iter: int | None = None) -> tuple[np.ndarray, int]:
+    """(n, 5) keypoints of ``designs`` [(d, p), ...] and how many solves were not certified
+    (``max_iter``: the solves' Newton budget, default ``solve``'s)."""
     from stitchswitch.reduced.solvers.solve import solve
 
     out, bad = [], 0
     for d, p in designs:
-        sol = solve(Patch(d, p), material)
+        sol = solve(Patch(d, p), material, max_iter=max_iter)
         kp = sol.keypoints
         out.append((kp.h_mm, kp.r_a_mm, kp.z_a_mm, kp.r_b_mm, kp.z_b_mm))
         bad += not sol.certified
@@ -115,6 +121,7 @@ class Objective:
     free: tuple
     designs: tuple
     measured: np.ndarray
+    max_iter: int | None = None
 
     def __call__(self, x) -> float:
         res = self.residuals(x)
@@ -127,7 +134,7 @@ class Objective:
             material = _from_x(x, self.free, self.base)
         except InvalidInputError:
             return np.full(self.measured.size, 1e3)
-        pred, bad = predict_keypoints(material, self.designs)
+        pred, bad = predict_keypoints(material, self.designs, self.max_iter)
         res = (pred - self.measured).ravel()
         if bad:
             res = np.sqrt(res ** 2 + UNCONVERGED_PENALTY * bad)
@@ -248,7 +255,8 @@ def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize:
         raise InvalidInputError(f"measured: expected ({len(designs)}, 5) keypoints, got {measured.shape}")
     rows = tuple((float(d), float(p)) for d, p in designs)
     objective = Objective(start, free, rows, measured)
-    search = Objective(search_material(start, search_nodes), free, rows, measured)
+    search = Objective(search_material(start, search_nodes), free, rows, measured,
+                       SEARCH_MAX_ITER)
     bounds = _search_bounds(free)
     x_start = start_point(_to_x(start.as_dict(), free) if x0 is None else x0, bounds)
     state = {"gen": 0, "best_x": x_start, "best_f": math.inf, "nfev": 0}
