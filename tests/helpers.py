@@ -92,3 +92,24 @@ def unwritable_dir(tmp_path):
             return candidate
         probe.unlink()
     pytest.skip("no unwritable folder on this machine")
+
+
+def solver_states(design, iterations):
+    """The Newton solver's states along a cold solve of ``design`` (d_mm, fill) after each of
+    ``iterations``: yields (hb, grad, free), the banded Hessian, the gradient and the free
+    drops there (the systems the Newton step solves)."""
+    from stitchswitch import DEFAULT_MATERIAL, Patch
+    from stitchswitch.reduced.model.discretization import make_grid
+    from stitchswitch.reduced.model.terms import ALL_TERMS
+    from stitchswitch.reduced.model.terms.segment import BANDWIDTH
+    from stitchswitch.reduced.solvers import continuation, fused, newton_loop, step
+
+    grid = make_grid(Patch(*design), DEFAULT_MATERIAL)
+    coef = fused.coefficients(ALL_TERMS, grid)
+    r0, z0 = continuation.released_state(grid)
+    n = r0.size
+    for k in iterations:
+        r, z = newton_loop.fused_iterate(r0.copy(), z0.copy(), coef, 0.0, k, 0, 0.0)[:2]
+        grad, hb = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
+        fused.derivatives(r, z, coef, grad, hb, True)
+        yield hb, grad, step.stationarity(grad, np.maximum(z[:-1] - z[1:], 0.0))[1]

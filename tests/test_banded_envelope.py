@@ -9,11 +9,10 @@ import pytest
 from numba import njit
 from scipy.linalg.lapack import dpbtrf
 
-from stitchswitch import DEFAULT_MATERIAL, Patch
-from stitchswitch.reduced.model.discretization import make_grid
-from stitchswitch.reduced.model.terms import ALL_TERMS
 from stitchswitch.reduced.model.terms.segment import BANDWIDTH
-from stitchswitch.reduced.solvers import banded, continuation, fused, newton_loop, step
+from stitchswitch.reduced.solvers import banded, bordered, step
+
+from helpers import solver_states
 
 
 @njit(fastmath=banded.CONTRACT)
@@ -49,7 +48,7 @@ def _merged_band(rng, n_nodes):
     free[5:25] = False                  # a run of 20 held drops
     free[40:44] = False
     dof_map, n_red = step.reduced_indices(n_nodes, free)
-    return banded.restrict(hb, dof_map, n_red)
+    return bordered.restrict(hb, dof_map, n_red, 0)[0].T
 
 
 @pytest.mark.parametrize("seed", range(4))
@@ -87,18 +86,10 @@ def test_an_indefinite_wide_band_fails_where_the_full_elimination_does():
 @pytest.mark.parametrize("design", [(40.0, 1.0), (70.0, 0.8)])
 def test_factor_and_solve_equal_the_full_band_ones_on_solver_states(design):
     """Real restricted Hessians along a solve, including iterations with flat stretches."""
-    grid = make_grid(Patch(*design), DEFAULT_MATERIAL)
-    coef = fused.coefficients(ALL_TERMS, grid)
-    r0, z0 = continuation.released_state(grid)
-    n = r0.size
     widest = 0
-    for k in range(0, 16, 3):
-        r, z = newton_loop.fused_iterate(r0.copy(), z0.copy(), coef, 0.0, k, 0, 0.0)[:2]
-        grad, hb = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
-        fused.derivatives(r, z, coef, grad, hb, True)
-        free = step.stationarity(grad, np.maximum(z[:-1] - z[1:], 0.0))[1]
-        dof_map, n_red = step.reduced_indices(n, free)
-        ab = banded.restrict(hb, dof_map, n_red)
+    for hb, grad, free in solver_states(design, range(0, 16, 3)):
+        dof_map, n_red = step.reduced_indices(grad.size // 2, free)
+        ab = bordered.restrict(hb, dof_map, n_red, 0)[0].T
         widest = max(widest, ab.shape[0] - 1)
         shift = 1e-3 * np.abs(ab[0]).mean()
         L, info = banded.factor(ab, shift)

@@ -3,11 +3,10 @@ Newton direction it gives against the node-by-node numbering's on real solver st
 import numpy as np
 import pytest
 
-from stitchswitch import DEFAULT_MATERIAL, Patch
-from stitchswitch.reduced.model.discretization import make_grid
-from stitchswitch.reduced.model.terms import ALL_TERMS
 from stitchswitch.reduced.model.terms.segment import BANDWIDTH
-from stitchswitch.reduced.solvers import banded, bordered, continuation, fused, newton_loop, step
+from stitchswitch.reduced.solvers import banded, bordered, step
+
+from helpers import solver_states
 
 
 def _dense_restricted(hb, dof_map, n_red):
@@ -96,18 +95,11 @@ def _old_direction(ab, g, dof_map, n_red, shift):
 
 @pytest.mark.parametrize("design", [(55.0, 1.0), (70.0, 0.8), (25.0, 1.0)])
 def test_newton_direction_equals_the_node_by_node_numberings_on_solver_states(design):
-    grid = make_grid(Patch(*design), DEFAULT_MATERIAL)
-    coef = fused.coefficients(ALL_TERMS, grid)
-    r0, z0 = continuation.released_state(grid)
-    n = r0.size
     borders = 0
-    for k in range(0, 25, 4):
-        r, z = newton_loop.fused_iterate(r0.copy(), z0.copy(), coef, 0.0, k, 0, 0.0)[:2]
-        grad, hb = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
-        fused.derivatives(r, z, coef, grad, hb, True)
-        free = step.stationarity(grad, np.maximum(z[:-1] - z[1:], 0.0))[1]
+    for hb, grad, free in solver_states(design, range(0, 25, 4)):
+        n = grad.size // 2
         old_map, n_red = step.reduced_indices(n, free)
-        ab_old = banded.restrict(hb, old_map, n_red)
+        ab_old = bordered.restrict(hb, old_map, n_red, 0)[0].T
         dof_map, n_band, m = bordered.indices(n, free)
         At, B, C = bordered.restrict(hb, dof_map, n_band, m)
         borders += m

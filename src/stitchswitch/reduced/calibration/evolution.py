@@ -27,8 +27,8 @@ many, so the fit does not depend on the number of workers (tests/test_calibratio
 
 Two resolutions. The search runs at ``SEARCH_NODES`` nodes (``search_material``: the same
 domain and physics, a coarser spacing), where the 25 calibration designs solve in about 40 %
-of the time they take at the default 300 nodes; the keypoints of the 25 calibration designs move by 0.01-0.15 mm on average
-between the two (at most 0.6 mm, in z_b), under the measurement noise. The polish, the
+of the time they take at the default 300 nodes, and their keypoints move by 0.01-0.15 mm on
+average between the two (at most 0.6 mm, in z_b), under the measurement noise. The polish, the
 reported MSE and the identifiability use the start material's own resolution, so the result is
 the fine model's: the polish runs first at the search resolution (cheap, to its minimum), then
 at the fine one, where only the small shift between the two minima is left to travel.

@@ -1,5 +1,6 @@
-"""Banded linear algebra for the Newton solver: restriction of the Hessian to the reduced
-variables of an active set, and a positive-definiteness-checking Cholesky solve.
+"""Banded linear algebra for the Newton solver: a positive-definiteness-checking Cholesky
+solve and the lowest mode (the restriction of the Hessian to an active set's variables is
+``bordered.restrict``).
 
 The solver keeps bands as rows (``*_rows``: ``At[j, k] = A[j + k, j]``, C order, so each band
 column is contiguous and nothing is copied or transposed between restriction, factor and
@@ -32,58 +33,13 @@ CONTRACT = {"contract"}
 
 
 @njit(cache=True)
-def restrict_rows(hb, dof_map, n_red):
-    """P^T H P as band rows: ``At[j, k] = A[j + k, j]`` (C order, n_red x (bw + 1)), the
-    transpose of LAPACK's lower band storage, so that each column of the band is contiguous
-    for the elimination. H is given as a lower band ``hb`` (global dofs) and P is the 0/1
-    matrix that maps reduced variable ``dof_map[a]`` to global dof a (-1: fixed).
-
-    Several global dofs may share one reduced variable (merged z groups): their coupling then
-    counts twice on the diagonal. The bandwidth of the result is found first."""
-    kmax, n = hb.shape
-    bw = 0
-    for j in range(n):
-        J = dof_map[j]
-        if J < 0:
-            continue
-        for k in range(kmax):
-            if j + k < n and dof_map[j + k] >= 0:
-                bw = max(bw, abs(dof_map[j + k] - J))
-    At = np.zeros((n_red, bw + 1))
-    for j in range(n):
-        J = dof_map[j]
-        if J < 0:
-            continue
-        for k in range(kmax):
-            if j + k >= n:
-                break
-            I = dof_map[j + k]
-            if I < 0:
-                continue
-            v = hb[k, j]
-            if I == J:
-                At[I, 0] += v if k == 0 else 2.0 * v
-            elif I > J:
-                At[J, I - J] += v
-            else:
-                At[I, J - I] += v
-    return At
-
-
-@njit(cache=True)
-def restrict(hb, dof_map, n_red):
-    """``restrict_rows`` in LAPACK's lower band storage (``ab[k, j] = A[j + k, j]``; a view)."""
-    return restrict_rows(hb, dof_map, n_red).T
-
-
-@njit(cache=True)
 def envelope_rows(At):
     """Per column j, how many subdiagonal entries of its Cholesky factor can be nonzero: the
     last nonzero of column j of A, or the fill of an earlier column reaching below it
     (Cholesky fills a column only between its diagonal and the lowest row an earlier column
     reaches). A long merged z group makes the band wide (its height couples to every r of the
     group) but only its own columns long; every other column keeps a few entries. ``At``: band
-    rows (``restrict_rows``)."""
+    rows (``bordered.restrict``)."""
     n, kd = At.shape[0], At.shape[1] - 1
     ends = np.empty(n, dtype=np.int64)
     reach = -1                             # lowest row reached by an earlier column
@@ -107,7 +63,7 @@ def envelope(ab):
 @njit(cache=True, fastmath=CONTRACT)
 def factor_rows(At, shift):
     """(Lt, ends, info): the lower banded Cholesky factor of A + shift I as band rows (``At``
-    from ``restrict_rows``, not modified), its ``envelope_rows`` and LAPACK's info: 0 on
+    from ``bordered.restrict``, not modified), its ``envelope_rows`` and LAPACK's info: 0 on
     success, j + 1 if the leading minor of order j + 1 is not positive definite (then the
     factor is incomplete).
 

@@ -74,9 +74,12 @@ def indices(n, free_drop):
 def restrict(hb, dof_map, n_band, m):
     """(At, B, C): P^T H P for H given as a lower band ``hb`` (global dofs) and P the 0/1
     matrix that maps variable ``dof_map[a]`` to global dof a (-1: fixed), split into the band
-    rows ``At`` of the band variables (``banded.restrict_rows``' layout), the border rows B
+    rows ``At`` of the band variables (``At[j, k] = A[j + k, j]``, ``banded``'s row layout), the
+    border rows B
     (m, n_band) and the border block C (m, m). Several global dofs may share one variable
-    (merged z groups): their coupling then counts twice on the diagonal."""
+    (merged z groups): their coupling then counts twice on the diagonal. With m = 0 (the
+    node-by-node numbering of ``step.reduced_indices``, n_band = all variables) ``At`` is the
+    whole restricted band."""
     kmax, n = hb.shape
     bw = 0
     for j in range(n):

@@ -24,7 +24,6 @@ from numba import njit
 
 from stitchswitch.reduced.model.terms.segment import BANDWIDTH, NO_HESSIAN
 from stitchswitch.reduced.solvers import bordered, fused
-from stitchswitch.reduced.solvers.banded import restrict_rows
 from stitchswitch.reduced.solvers.retraction import drops, point, polar
 from stitchswitch.reduced.solvers.step import direction, reduced_indices, stationarity
 
@@ -69,7 +68,8 @@ def _leave(r, z, E, residual, it, shift, status, hb, free):
     """``iterate``'s return: the restricted Hessian in the node-by-node numbering
     (``step.reduced_indices``, LAPACK's band storage), which the saddle escape takes."""
     dof_map, n_red = reduced_indices(r.size, free)
-    return r, z, E, residual, it, shift, status, restrict_rows(hb, dof_map, n_red).T, dof_map
+    ab = bordered.restrict(hb, dof_map, n_red, 0)[0].T
+    return r, z, E, residual, it, shift, status, ab, dof_map
 
 
 def iterate(r, z, model, tol, max_iter, it, shift, derivatives, energy):
