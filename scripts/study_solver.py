@@ -1,0 +1,80 @@
+"""The certified solver's robustness and where its time goes (docs/model.md, "Speed"): the
+figures there are this script's output.
+
+Robustness: every design of a sweep d = 10-150 mm every 5 mm, p = 0.05-1.0 every 0.05 (580
+designs) solved cold with the default material: how many certify, and the Newton iterations.
+Cost per iteration: CPU time of each compiled part of one Newton iteration at the solution of
+d = 55 mm, p = 1.0 (the energy with its Hessian, one line-search trial, the bordered
+restriction, factor and solve, the polar step), each the mean of many calls.
+
+Usage: python scripts/study_solver.py
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from stitchswitch import DEFAULT_MATERIAL, Patch, solve
+from stitchswitch.reduced.model.discretization import make_grid
+from stitchswitch.reduced.model.terms import ALL_TERMS
+from stitchswitch.reduced.model.terms.segment import BANDWIDTH
+from stitchswitch.reduced.solvers import bordered, fused, retraction, step
+
+DIAMETERS_MM = np.arange(10.0, 150.0 + 1e-9, 5.0)
+FILLS = np.round(np.arange(0.05, 1.0 + 1e-9, 0.05), 2)
+
+
+def _cpu_us(f, *args, n: int = 3000) -> float:
+    f(*args)
+    t = time.process_time()
+    for _ in range(n):
+        f(*args)
+    return (time.process_time() - t) / n * 1e6
+
+
+def robustness() -> dict:
+    its, certified = [], 0
+    for d in DIAMETERS_MM:
+        for p in FILLS:
+            sol = solve(Patch(float(d), float(p)))
+            its.append(sol.iterations)
+            certified += sol.certified
+    return {"designs": len(its), "certified": certified, "median_iterations": float(np.median(its)),
+            "max_iterations": int(max(its))}
+
+
+def parts(design=(55.0, 1.0)) -> dict:
+    sol = solve(Patch(*design))
+    grid = make_grid(Patch(*design), DEFAULT_MATERIAL)
+    c = fused.coefficients(ALL_TERMS, grid)
+    r, z = sol.r_mm / sol.dr_mm, sol.z_mm / sol.dr_mm
+    n = r.size
+    grad, hb = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
+    fused.derivatives(r, z, c, grad, hb, True)
+    free = step.stationarity(grad, retraction.drops(z))[1]
+    dof_map, n_band, m = bordered.indices(n, free)
+    At, B, C = bordered.restrict(hb, dof_map, n_band, m)
+    d, _ = step.direction(At, B, C, grad, dof_map, 0.0)
+    curve = retraction.polar(r, z, 1e-3 * d)
+    from stitchswitch.reduced.model.terms import bending
+    return {
+        "energy, gradient and Hessian": _cpu_us(fused.derivatives, r, z, c, grad, hb, True),
+        "  of which bending": _cpu_us(bending._kernel, r, z, c[5][0], grad, hb, True),
+        "line-search trial (point + energy)": _cpu_us(retraction.point, *curve, 1.0)
+                                               + _cpu_us(fused.energy, r, z, c),
+        "restriction": _cpu_us(bordered.restrict, hb, dof_map, n_band, m),
+        "factor and solve (direction)": _cpu_us(step.direction, At, B, C, grad, dof_map, 0.0),
+        "polar step": _cpu_us(retraction.polar, r, z, d),
+    }
+
+
+def main() -> int:
+    print(robustness())
+    for name, us in parts().items():
+        print(f"{name:36s} {us:6.1f} us")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
