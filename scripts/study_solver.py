@@ -7,10 +7,12 @@ Cost per iteration: CPU time of each compiled part of one Newton iteration at th
 d = 55 mm, p = 1.0 (the energy with its Hessian, one line-search trial, the bordered
 restriction, factor and solve, the polar step), each the mean of many calls.
 
-Usage: python scripts/study_solver.py
+Usage: python scripts/study_solver.py [--json]
 """
 from __future__ import annotations
 
+import json
+import sys
 import time
 
 import numpy as np
@@ -69,9 +71,14 @@ def parts(design=(55.0, 1.0)) -> dict:
     }
 
 
-def main() -> int:
-    print(robustness())
-    for name, us in parts().items():
+def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    result = {"robustness": robustness(), "parts_us": parts()}
+    if "--json" in argv:
+        print(json.dumps(result, indent=1))
+        return 0
+    print(result["robustness"])
+    for name, us in result["parts_us"].items():
         print(f"{name:36s} {us:6.1f} us")
     return 0
 
