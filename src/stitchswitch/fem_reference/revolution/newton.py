@@ -19,8 +19,10 @@ from scipy.linalg import LinAlgError, cho_factor, cho_solve, eigh
 
 from stitchswitch.blas import one_thread
 
-#: The scaled Hessian's lowest eigenvalue above which a converged state is a strict minimum.
-MIN_EIGENVALUE = 1e-9
+#: The scaled Hessian's lowest eigenvalue above which a converged state is a strict minimum:
+#: beyond the round-off of a scaled Hessian with entries of order one (its soft modes, slack
+#: fabric resisting with the compressive ratio c ~ 0.005, sit at 1e-12 to 1e-10).
+MIN_EIGENVALUE = 1e-13
 DEFAULT_TOL = 1e-8
 
 

@@ -35,10 +35,11 @@ SAMPLE_FRACTION = 1.0 / 200.0
 
 
 def build(patch: Patch, material: Material = DEFAULT_MATERIAL, params: ShellParams = DEFAULT_SHELL,
-          *, edge: str = "free", refine: int = 0) -> ShellProblem:
+          *, edge: str = "free", refine: int = 0, length_mm: float | None = None) -> ShellProblem:
+    """The problem of one design on [0, L]: L = ``length_mm`` or the reduced model's domain."""
     grid = make_grid(patch, material)
     rb = patch.diameter_mm / (2.0 * material.eta)
-    length = (material.n_nodes - 1) * grid.dr_mm
+    length = (material.n_nodes - 1) * grid.dr_mm if length_mm is None else float(length_mm)
     mer = Meridian(rb, length, params.elements_inside, params.growth, params.intorder, refine)
     inner, outer = region_moduli(patch, material, params)
     weight = 0.0
@@ -145,8 +146,13 @@ def reduced_start(problem: ShellProblem, patch: Patch, material: Material) -> np
     from stitchswitch.reduced.solvers.solve import solve
 
     red = solve(patch, material)
-    z = np.asarray(red.z_mm) - red.z_mm[-1]
-    return from_profile(problem, red.R_mm, red.r_mm, z, red.n_inside)
+    R, r = np.asarray(red.R_mm), np.asarray(red.r_mm)
+    z = np.asarray(red.z_mm) - np.interp(problem.meridian.length, R, red.z_mm)
+    if problem.edge != "free":      # held at r(L) = L: blend the far fabric back to rest
+        L = problem.meridian.length
+        blend = np.clip((R - problem.meridian.rb) / max(L - problem.meridian.rb, 1e-9), 0.0, 1.0)
+        r = r + blend * (R - r)
+    return from_profile(problem, R, r, z, red.n_inside)
 
 
 def equilibrium(patch: Patch, material: Material = DEFAULT_MATERIAL, params: ShellParams = DEFAULT_SHELL,
