@@ -20,9 +20,12 @@ class Jet:
         self.v, self.g, self.h = v, g, h
 
     @classmethod
-    def variable(cls, q: np.ndarray, k: int) -> "Jet":
-        """The k-th of the m variables ``q`` (m, P)."""
+    def variable(cls, q: np.ndarray, k: int, derivatives: bool = True) -> "Jet":
+        """The k-th of the m variables ``q`` (m, P); without ``derivatives`` a jet of no
+        variables (values only: the cheap energy of a line search)."""
         m, p = q.shape
+        if not derivatives:
+            return cls(np.array(q[k], dtype=float), np.zeros((0, p)), np.zeros((0, 0, p)))
         g = np.zeros((m, p))
         g[k] = 1.0
         return cls(np.array(q[k], dtype=float), g, np.zeros((m, m, p)))

@@ -24,10 +24,10 @@ from stitchswitch.fem_reference.revolution.jet import Jet
 FIELDS = ("r", "dr", "dz", "d2r", "d2z")
 
 
-def strains(q: np.ndarray, S: np.ndarray, lam: np.ndarray):
+def strains(q: np.ndarray, S: np.ndarray, lam: np.ndarray, derivatives: bool = True):
     """Jets (eps_s, eps_t, k_s, k_t) at the points of ``q`` (m >= 5, P): r, r', z', r'', z''
     first (the jets are in all m fields)."""
-    r, rp, zp, rpp, zpp = (Jet.variable(q, k) for k in range(5))
+    r, rp, zp, rpp, zpp = (Jet.variable(q, k, derivatives) for k in range(5))
     l = (rp * rp + zp * zp).sqrt()
     eps_s = l / lam - 1.0
     eps_t = r / (lam * S) - 1.0

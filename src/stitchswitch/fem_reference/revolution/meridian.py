@@ -46,6 +46,7 @@ class Side:
     B: sp.csr_matrix
     value: np.ndarray     # value dofs, by node
     slope: np.ndarray     # slope dofs, by node
+    hessian_map: tuple = None   # (M, pattern): see ``_hessian_map``
 
     @property
     def n(self) -> int:
@@ -59,21 +60,43 @@ def _side(nodes: np.ndarray, intorder: int) -> Side:
     ne, nq = basis.dx.shape
     p = ne * nq
     n = basis.N
-    rows, cols, vals = [], [], []
-    point = np.arange(p).reshape(ne, nq)
+    # per field: the dof (P, nbfun) and the basis function's value (P, nbfun) at every point
+    cols = np.zeros((N_FIELDS, p, basis.Nbfun), dtype=int)
+    vals = np.zeros((N_FIELDS, p, basis.Nbfun))
     for i in range(basis.Nbfun):
         f = basis.basis[i][0]
-        dof = np.repeat(basis.element_dofs[i][:, None], nq, axis=1)
+        dof = np.repeat(basis.element_dofs[i][:, None], nq, axis=1).ravel()
         comps = {0: (np.asarray(f), 0), 1: (f.grad[0], 0), 3: (f.hess[0, 0], 0),
                  5: (np.asarray(f), n), 2: (f.grad[0], n), 4: (f.hess[0, 0], n)}
         for field, (val, off) in comps.items():
-            rows.append((field * p + point).ravel())
-            cols.append((dof + off).ravel())
-            vals.append(np.asarray(val).ravel())
-    B = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                      shape=(N_FIELDS * p, 2 * n))
+            cols[field, :, i] = dof + off
+            vals[field, :, i] = np.asarray(val).ravel()
+    rows = np.broadcast_to((np.arange(N_FIELDS)[:, None, None] * p + np.arange(p)[None, :, None]),
+                           cols.shape)
+    B = sp.csr_matrix((vals.ravel(), (rows.ravel(), cols.ravel())), shape=(N_FIELDS * p, 2 * n))
     S = np.asarray(basis.global_coordinates())[0].ravel()
-    return Side(basis, S, np.asarray(basis.dx).ravel(), B, basis.nodal_dofs[0], basis.nodal_dofs[1])
+    side = Side(basis, S, np.asarray(basis.dx).ravel(), B, basis.nodal_dofs[0], basis.nodal_dofs[1])
+    side.hessian_map = _hessian_map(cols, vals, 2 * n)
+    return side
+
+
+def _hessian_map(cols: np.ndarray, vals: np.ndarray, n: int):
+    """The fixed linear map from the pointwise weighted Hessians hw (6, 6, P), flattened, to the
+    data of B^T diag(hw) B in a fixed sparsity pattern: (M, pattern) with H.data = M @ hw.ravel().
+    ``cols``, ``vals`` (6, P, k): each field's dofs and basis values at every point."""
+    nf, p, k = cols.shape
+    ii = np.broadcast_to(cols[:, None, :, :, None], (nf, nf, p, k, k))
+    jj = np.broadcast_to(cols[None, :, :, None, :], (nf, nf, p, k, k))
+    vv = vals[:, None, :, :, None] * vals[None, :, :, None, :]
+    src = np.broadcast_to(np.arange(nf * nf * p).reshape(nf, nf, p)[:, :, :, None, None], vv.shape)
+    rows, cols_, vals_, src = ii.ravel(), jj.ravel(), vv.ravel(), src.ravel()
+    pattern = sp.csr_matrix((np.ones(rows.size), (rows, cols_)), shape=(n, n))
+    pattern.sum_duplicates()
+    pattern.sort_indices()
+    lookup = sp.csr_matrix((np.arange(pattern.nnz) + 1.0, pattern.indices, pattern.indptr), shape=(n, n))
+    pos = np.asarray(lookup[rows, cols_]).ravel().astype(int) - 1
+    M = sp.csr_matrix((vals_, (pos, src)), shape=(pattern.nnz, nf * nf * p))
+    return M, pattern
 
 
 class Meridian:

@@ -11,7 +11,8 @@ times the enclosed volume / 2 pi, and a self weight g), and the energy is its qu
 come from jets (``jet``); the Hessian is assembled as B^T diag(w d2f) B with scikit-fem's
 operators ``B`` of each side (``meridian``), the outer side through the interface map's
 Jacobian and its second-derivative term. ``extras`` adds energies of the unknowns themselves
-(the contact plate of ``fem_reference.snap``).
+(a penalty, say). ``pinned`` unknowns are held at their values in the state (the nodes
+under the contact plate of ``fem_reference.snap``).
 
 Boundary conditions: r(0) = 0 and z'(0) = 0 at the pole; z(L) = 0 at the outer edge, where the
 fabric is ``"free"`` (r(L) free, as the reduced model's far edge), ``"held"`` (r(L) = L: held
@@ -40,12 +41,14 @@ class ShellProblem:
     """Energy E(y) of a meridian with the moduli of its two regions."""
 
     def __init__(self, meridian: Meridian, inner: Moduli, outer: Moduli, *, edge: str = "free",
-                 pressure: float = 0.0, weight: float = 0.0, t: float = 1.0, extras=()):
+                 pressure: float = 0.0, weight: float = 0.0, t: float = 1.0, extras=(),
+                 pinned=()):
         if edge not in EDGES:
             raise InvalidInputError(f"edge: {edge!r} is not one of {', '.join(EDGES)}")
         self.meridian, self.inner_moduli, self.outer_moduli = meridian, inner, outer
         self.edge, self.pressure, self.weight, self.t = edge, float(pressure), float(weight), float(t)
         self.extras = tuple(extras)
+        self.pinned = tuple(int(i) for i in pinned)
         m = meridian
         last = m.outer_nodes.size - 1
         fixed = [m.dof("inner", "r", 0), m.dof("inner", "dz", 0), m.dof("outer", "z", last)]
@@ -53,13 +56,13 @@ class ShellProblem:
             fixed.append(m.dof("outer", "r", last))
         if edge == "clamped":
             fixed.append(m.dof("outer", "dz", last))
-        self.fixed = np.array(sorted(fixed))
+        self.fixed = np.array(sorted(set(fixed) | set(self.pinned)))
         self.free = np.setdiff1d(np.arange(m.size), self.fixed)
 
     def with_(self, **changes) -> "ShellProblem":
-        """The same problem with some of edge, pressure, weight, t, extras changed."""
+        """The same problem with some of edge, pressure, weight, t, extras, pinned changed."""
         kw = dict(edge=self.edge, pressure=self.pressure, weight=self.weight, t=self.t,
-                  extras=self.extras)
+                  extras=self.extras, pinned=self.pinned)
         kw.update(changes)
         return ShellProblem(self.meridian, self.inner_moduli, self.outer_moduli, **kw)
 
@@ -67,14 +70,14 @@ class ShellProblem:
     def _moduli(self, m: Moduli) -> Moduli:
         return m if self.t == 1.0 else replace(m, lam=1.0 + self.t * (m.lam - 1.0))
 
-    def _side_density(self, q: np.ndarray, S: np.ndarray, m: Moduli) -> Jet:
+    def _side_density(self, q: np.ndarray, S: np.ndarray, m: Moduli, derivatives: bool = True) -> Jet:
         m = self._moduli(m)
-        eps_s, eps_t, k_s, k_t = strains(q, S, m.lam)
+        eps_s, eps_t, k_s, k_t = strains(q, S, m.lam, derivatives)
         w = (constitutive.membrane(eps_s, eps_t, m) + constitutive.bending(k_s, k_t, m)) * (m.lam ** 2 * S)
         w = w + constitutive.hoop_hardening(eps_t, S, m)
         if self.pressure or self.weight:
-            z = Jet.variable(q, 5)
-            r, rp = Jet.variable(q, 0), Jet.variable(q, 1)
+            z = Jet.variable(q, 5, derivatives)
+            r, rp = Jet.variable(q, 0, derivatives), Jet.variable(q, 1, derivatives)
             w = w + z * r * rp * self.pressure + z * S * self.weight
         return w
 
@@ -86,23 +89,19 @@ class ShellProblem:
         q6 = (side.B @ x).reshape(N_FIELDS, -1)
         if not self._in_domain(q6):
             return np.inf, None, None
-        f = self._side_density(q6, side.S, m)     # jets in all six fields (z: the loads)
+        f = self._side_density(q6, side.S, m, want > 0)    # jets in all six fields (z: loads)
         E = float(np.sum(f.v * side.w))
         if not np.isfinite(E):
             return np.inf, None, None
         if want == 0:
             return E, None, None
-        p = side.S.size
         g = side.B.T @ (f.g * side.w).ravel()
         if want == 1:
             return E, g, None
-        hw = f.h * side.w
-        rows = (np.arange(N_FIELDS)[:, None, None] * p + np.arange(p)[None, None, :])
-        rows = np.broadcast_to(rows, (N_FIELDS, N_FIELDS, p))
-        cols = np.broadcast_to(np.arange(N_FIELDS)[None, :, None] * p + np.arange(p)[None, None, :],
-                               (N_FIELDS, N_FIELDS, p))
-        Hq = sp.csr_matrix((hw.ravel(), (rows.ravel(), cols.ravel())), shape=(N_FIELDS * p,) * 2)
-        return E, g, (side.B.T @ Hq @ side.B)
+        M, pattern = side.hessian_map
+        H = pattern.copy()
+        H.data = M @ (f.h * side.w).ravel()
+        return E, g, H
 
     # ------------------------------------------------------------------ totals
     def energy(self, y: np.ndarray) -> float:
