@@ -30,7 +30,7 @@ def _check_inverted(path):
     # switching force is where the curve peaks, not at the last step (no reset to flat)
     assert path.force[0] == 0.0 and np.all(path.force >= 0.0)
     assert 0 < np.argmax(path.force) < path.force.size - 1
-    assert path.switching_force >= path.force.max() * (1 - 1e-9)
+    assert path.switching_force >= path.force.max() * (1 - 1e-9) and path.limit_point
     assert path.barrier > 0
 
 

@@ -28,8 +28,8 @@ STIFFNESS = options.BoundedFloat(0.0, 1e5, low_open=True)
               show_default=True, metavar="N_PER_M",
               help="Tensile membrane stiffness of the bare knit (N/m): the force scale "
               "(docs/force.md).")
-@click.option("--steps", type=click.IntRange(min=6, max=400), default=20, show_default=True,
-              help="Plate steps from the apex height to its mirror image.")
+@click.option("--steps", type=click.IntRange(min=6, max=400), default=24, show_default=True,
+              help="Plate steps from the apex height h down to -1.5 h (the most it travels).")
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
               metavar="FILE", help="Write the curve (w_mm, force_N) as CSV.")
 @click.option("--plot", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
@@ -43,6 +43,7 @@ def switch_force(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_
     from dataclasses import replace
 
     from stitchswitch.fem_reference.snap.path import switching_path
+    from stitchswitch.fem_reference.snap.states import bistability
 
     for path, name in ((csv_path, "--csv"), (plot, "--plot")):
         if path is not None and path.is_dir():
@@ -56,7 +57,9 @@ def switch_force(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_
     except StitchSwitchError as exc:          # a flat design: nothing to switch (exit 1)
         raise click.ClickException(str(exc)) from None
     out = curve.as_dict()
-    out["verdict"] = "bistable" if curve.inverted else "spring-back"
+    # bistable: the inverted state is a strict local minimum without load (whether or not this
+    # axisymmetric path reaches it)
+    out["verdict"] = bistability(patch, material, params).verdict
     out["knit_stiffness_n_per_m"] = knit_stiffness_n_per_m
     force_n = curve.force * curve.newton_per_n
     if csv_path is not None:
@@ -95,7 +98,11 @@ def switch_force(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_
                f"{out['w_switch_mm']:.2f} mm, energy barrier {out['energy_barrier_mj']:.4g} mJ")
     click.echo(f"pop-up state:   h {up['h_mm']:.2f} mm, r_a {up['r_a_mm']:.2f}, z_a {up['z_a_mm']:.2f}, "
                f"energy {up['energy_mj']:.4g} mJ")
-    click.echo(f"switched state: apex {down['apex_mm']:.2f} mm, r_a {down['r_a_mm']:.2f}, "
-               f"z_a {down['z_a_mm']:.2f}, energy {down['energy_mj']:.4g} mJ")
+    click.echo(f"after the path: apex {down['apex_mm']:.2f} mm, r_a {down['r_a_mm']:.2f}, "
+               f"z_a {down['z_a_mm']:.2f}, energy {down['energy_mj']:.4g} mJ "
+               f"({'the inverted state' if curve.inverted else 'back on the pop-up side'})")
+    if not curve.limit_point:
+        click.echo("warning: the force rose to the end of the plate's travel (no limit point on "
+                   "this path); the switching force printed is the last force", err=True)
     if not out["all_converged"]:
         click.echo("warning: some plate steps did not converge", err=True)

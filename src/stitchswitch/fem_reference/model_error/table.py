@@ -116,12 +116,14 @@ def design_error(patch: Patch, material: Material = DEFAULT_MATERIAL,
     red = solve(patch, material.replace(n_nodes=REDUCED_NODES,
                                         dr_max_mm=material.dr_max_mm * material.n_nodes / REDUCED_NODES))
     kp = red.keypoints
+    shell = _run(patch, material, params)
+    # a switch that is already off changes nothing: its run is the full one
+    without = {s: shell if params.without(s) == params else _run(patch, material, params.without(s))
+               for s in SWITCHES}
     return DesignError(
         diameter_mm=patch.diameter_mm, fill=patch.fill,
         reduced_mm={k: float(getattr(kp, k)) for k in KEYS}, reduced_certified=red.certified,
-        shell=_run(patch, material, params),
-        without={s: _run(patch, material, params.without(s)) for s in SWITCHES},
-        base=_run(patch, material, params.reduced_like()))
+        shell=shell, without=without, base=_run(patch, material, params.reduced_like()))
 
 
 def model_error(designs=DEFAULT_DESIGNS, material: Material = DEFAULT_MATERIAL,

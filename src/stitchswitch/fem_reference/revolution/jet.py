@@ -30,12 +30,6 @@ class Jet:
         g[k] = 1.0
         return cls(np.array(q[k], dtype=float), g, np.zeros((m, m, p)))
 
-    def _lift(self, other) -> "Jet":
-        if isinstance(other, Jet):
-            return other
-        v = np.broadcast_to(np.asarray(other, dtype=float), self.v.shape)
-        return Jet(v, np.zeros_like(self.g), np.zeros_like(self.h))
-
     def __add__(self, other):
         if not isinstance(other, Jet):
             return Jet(self.v + other, self.g, self.h)

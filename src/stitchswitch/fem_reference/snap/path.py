@@ -73,6 +73,13 @@ class SwitchingPath:
     elapsed_s: float
 
     @property
+    def limit_point(self) -> bool:
+        """The largest force is a maximum inside the path (the force falls after it), not the
+        force at the end of the plate's travel."""
+        k = int(np.argmax(self.force))
+        return bool(0 < k < self.force.size - 1 and self.force[-1] < self.force[k])
+
+    @property
     def switching_force_n(self) -> float:
         return self.switching_force * self.newton_per_n
 
@@ -88,6 +95,7 @@ class SwitchingPath:
             "plate_radius_mm": self.plate_radius_mm,
             "switching_force_n": self.switching_force_n, "w_switch_mm": self.w_switch_mm,
             "energy_barrier_mj": self.barrier_mj, "inverted": self.inverted,
+            "limit_point": self.limit_point,
             "all_converged": bool(self.converged.all()),
             "popup": {"h_mm": kp_up.h_mm, "r_a_mm": kp_up.r_a_mm, "z_a_mm": kp_up.z_a_mm,
                       "r_b_mm": kp_up.r_b_mm, "z_b_mm": kp_up.z_b_mm,
