@@ -1,12 +1,12 @@
-"""Benchmark: one converged shell-reference solve per design (target: <= 10 s).
+"""Benchmark: the shell of revolution's solve (target <= 2 s) and one full switching path
+(target <= 30 s).
 
-Nine designs (d 25, 50, 90 mm x p 0.6, 0.8, 1.0), 80 Hermite elements on the patch, solved two
-ways: Newton from the reduced equilibrium (whose time is reported separately), and the prestretch
-continuation from the flat sheet (``fem_reference/continuation.py``, independent of the reduced
-model). For the continuation the table also gives the largest relative keypoint difference to
-the reduced start and the energy difference (negative: the continuation found a lower minimum).
+Shell solves: the nine fem-check designs (d 25, 50, 90 mm x p 0.6, 0.8, 1.0), default
+``ShellParams`` (40 Hermite elements on the patch), Newton from the reduced model's equilibrium
+(the reduced solve's time reported separately). Switching paths: ``switching_path`` with the
+default 20 plate steps on the designs given by ``--paths`` (default d 60 mm, p 0.8).
 
-    python benchmarks/bench_fem.py [--elements 80] [--designs D,P;D,P] [--json]
+    python benchmarks/bench_fem.py [--designs D,P;D,P] [--paths D,P;D,P] [--json]
 """
 from __future__ import annotations
 
@@ -14,107 +14,65 @@ import argparse
 import json
 import sys
 import time
-from dataclasses import asdict, dataclass
+
+DESIGNS = tuple((d, p) for d in (25.0, 50.0, 90.0) for p in (0.6, 0.8, 1.0))
 
 
-@dataclass(frozen=True)
-class Row:
-    """One design: the shell solve from the reduced start and by continuation (times in s,
-    relative keypoint differences of the continuation against the reduced start)."""
-
-    diameter_mm: float
-    fill: float
-    fem_s: float
-    reduced_s: float
-    converged: bool
-    iterations: int
-    dofs: int
-    continuation_s: float
-    continuation_converged: bool
-    continuation_iterations: int
-    continuation_stages: int
-    continuation_rejected_stages: int
-    continuation_max_rel_keypoint: float
-    continuation_h_rel: float
-    continuation_energy_diff: float
-    continuation_lowest_eigenvalue: float
-
-    def as_dict(self) -> dict:
-        """The fields, in order, with the diameter under the output's key ``d_mm``."""
-        out = asdict(self)
-        return {"d_mm": out.pop("diameter_mm"), **out}
-
-
-def _designs(text):
-    from stitchswitch.fem_reference.check import DEFAULT_DESIGNS
-
+def _designs(text, default):
     if not text:
-        return DEFAULT_DESIGNS
+        return default
     return tuple(tuple(float(v) for v in item.split(",")) for item in text.split(";"))
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--elements", type=int, default=80)
     ap.add_argument("--designs", default=None, metavar="D,P;D,P")
+    ap.add_argument("--paths", default=None, metavar="D,P;D,P")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args(argv)
-    from stitchswitch import Patch, solve
-    from stitchswitch.fem_reference.check import KEYS
-    from stitchswitch.fem_reference.continuation import prestretch_continuation
-    from stitchswitch.fem_reference.shell import ShellModel
-    from stitchswitch.reduced.model.keypoints import keypoints_from_profile
+    from stitchswitch import DEFAULT_MATERIAL, Patch, solve
+    from stitchswitch.fem_reference.revolution.solve import build, reduced_start, relax
+    from stitchswitch.fem_reference.snap.path import switching_path
 
     solve(Patch(40, 0.8))
-    rows = []
-    for d, p in _designs(args.designs):
+    build(Patch(40, 0.8))
+    solves = []
+    for d, p in _designs(args.designs, DESIGNS):
         patch = Patch(d, p)
         t = time.perf_counter()
-        red = solve(patch)
-        t_red = time.perf_counter() - t
+        problem = build(patch)
+        y0 = reduced_start(problem, patch, DEFAULT_MATERIAL)
+        t_start = time.perf_counter() - t
         t = time.perf_counter()
-        model = ShellModel(patch, red.material, elements_inside=args.elements,
-                           growth=1.0 + 3.2 / args.elements)
-        sol = model.solve(model.start_from_profile(red.R_mm, red.r_mm, red.z_mm), max_iter=300)
-        t_fem = time.perf_counter() - t
+        st = relax(problem, y0)
+        t_shell = time.perf_counter() - t
+        solves.append({"d_mm": d, "fill": p, "shell_s": t_shell, "start_s": t_start,
+                       "iterations": st.iterations, "certified": st.certified,
+                       "unknowns": int(problem.free.size)})
+    paths = []
+    for d, p in _designs(args.paths, ((60.0, 0.8),)):
         t = time.perf_counter()
-        cont = prestretch_continuation(model)
-        t_cont = time.perf_counter() - t
-        kp, kc = keypoints_from_profile(*sol.sample()), keypoints_from_profile(*cont.solution.sample())
-        rel = max(abs(getattr(kc, k) - getattr(kp, k)) / abs(getattr(kp, k)) for k in KEYS)
-        rows.append(Row(diameter_mm=d, fill=p, fem_s=t_fem, reduced_s=t_red,
-                        converged=bool(sol.converged), iterations=int(sol.iterations),
-                        dofs=int(2 * model.n), continuation_s=t_cont,
-                        continuation_converged=bool(cont.converged),
-                        continuation_iterations=int(cont.solution.iterations),
-                        continuation_stages=len(cont.stages),
-                        continuation_rejected_stages=sum(not s.accepted for s in cont.stages),
-                        continuation_max_rel_keypoint=float(rel),
-                        continuation_h_rel=float((kc.h_mm - kp.h_mm) / kp.h_mm),
-                        continuation_energy_diff=float(cont.solution.energy - sol.energy),
-                        continuation_lowest_eigenvalue=cont.lowest_eigenvalue))
-    worst = max(r.fem_s for r in rows)
-    worst_cont = max(r.continuation_s for r in rows)
-    ok = worst <= 10.0 and all(r.converged for r in rows)
-    ok_cont = worst_cont <= 10.0 and all(r.continuation_converged for r in rows)
-    same = sum(r.continuation_max_rel_keypoint <= 5e-3 for r in rows)
+        c = switching_path(Patch(d, p))
+        paths.append({"d_mm": d, "fill": p, "path_s": time.perf_counter() - t, "inverted": c.inverted,
+                      "steps": int(c.w_mm.size - 1), "switching_force_n": c.switching_force_n})
+    worst = max(r["shell_s"] for r in solves)
+    worst_path = max(r["path_s"] for r in paths)
+    ok, ok_path = worst <= 2.0, worst_path <= 30.0
     if args.json:
-        print(json.dumps({"rows": [r.as_dict() for r in rows], "worst_s": worst, "target_le_10s": ok,
-                          "worst_continuation_s": worst_cont, "continuation_target_le_10s": ok_cont,
-                          "continuation_same_equilibrium": same}, indent=1))
+        print(json.dumps({"solves": solves, "paths": paths, "worst_shell_s": worst,
+                          "shell_target_le_2s": ok, "worst_path_s": worst_path,
+                          "path_target_le_30s": ok_path}, indent=1))
     else:
-        for r in rows:
-            print(f"d {r.diameter_mm:5g} p {r.fill:4g}: from reduced {r.fem_s:.2f} s ({r.iterations} "
-                  f"it, {r.dofs} dofs, conv {r.converged}; reduced solve "
-                  f"{1e3 * r.reduced_s:.0f} ms) | continuation {r.continuation_s:.2f} s "
-                  f"({r.continuation_iterations} it, {r.continuation_stages} stages, "
-                  f"{r.continuation_rejected_stages} rejected, conv {r.continuation_converged}; "
-                  f"max keypoint diff {100 * r.continuation_max_rel_keypoint:.3f} %, h "
-                  f"{100 * r.continuation_h_rel:+.3f} %, dE {r.continuation_energy_diff:+.1e})")
-        print(f"worst solve from the reduced start {worst:.2f} s (target <= 10 s)  {'PASS' if ok else 'FAIL'}")
-        print(f"worst continuation {worst_cont:.2f} s (target <= 10 s)  {'PASS' if ok_cont else 'FAIL'}; "
-              f"same equilibrium (keypoints within 0.5 %) on {same} of {len(rows)} designs")
-    return 0 if ok and ok_cont else 1
+        print(f"{'d_mm':>5} {'fill':>4} {'shell_s':>8} {'iter':>5} {'certified':>9} {'unknowns':>8}")
+        for r in solves:
+            print(f"{r['d_mm']:5g} {r['fill']:4g} {r['shell_s']:8.2f} {r['iterations']:5d} "
+                  f"{str(r['certified']):>9} {r['unknowns']:8d}")
+        for r in paths:
+            print(f"switching path d {r['d_mm']:g} p {r['fill']:g}: {r['path_s']:.1f} s, {r['steps']} steps, "
+                  f"inverted {r['inverted']}, switching force {r['switching_force_n']:.4g} N")
+        print(f"worst shell solve {worst:.2f} s (target <= 2 s)  {'PASS' if ok else 'FAIL'}")
+        print(f"worst switching path {worst_path:.1f} s (target <= 30 s)  {'PASS' if ok_path else 'FAIL'}")
+    return 0 if ok and ok_path else 1
 
 
 if __name__ == "__main__":

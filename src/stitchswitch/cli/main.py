@@ -24,6 +24,7 @@ COMMANDS = {
     "fem-check": "reference.fem_check:fem_check_cmd",
     "switch-force": "reference.switch_force:switch_force",
     "fem-solve": "reference.fem_solve:fem_solve",
+    "bistability-map": "reference.bistability_map:bistability_map_cmd",
     "patch": "design.patch:patch",
     "inspect": "design.inspect_cmd:inspect",
     "fabricate": "design.fabricate:fabricate_cmd",

@@ -1,4 +1,7 @@
-"""Does the reduced model converge to the shell reference, and how far is N = 300 from it?
+"""The same-energy discretization check: does the reduced model converge to its own continuum
+limit (``density``, ``shell``), and how far is N = 300 from it? It guards the reduced
+discretization (tests/test_fem_reference.py); it cannot see model error, which is what the
+independent shell (``revolution``, ``model_error``, ``stitchswitch fem-check``) measures.
 
 For each design the reduced model is solved with N = 75, 150, 300, 600 nodes over the same
 domain (dR_max = 0.5 mm x 300 / N, and at most ``domain_max_rb`` patch radii; the bending

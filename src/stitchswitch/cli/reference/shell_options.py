@@ -1,25 +1,34 @@
-"""The options of the shell reference shared by ``fem-check`` and ``fem-solve``: which physics
-the reference adds (hoop bending, Poisson coupling) and where its Newton solve starts."""
+"""The shell of revolution's options shared by ``fem-check``, ``fem-solve``, ``switch-force``
+and ``bistability-map``: its own physics (Poisson ratio, natural curvature, thickness) and its
+mesh, turned into a ``ShellParams``."""
 from __future__ import annotations
 
 import click
 
 from stitchswitch.cli import options
-from stitchswitch.fem_reference.continuation import DEFAULT_START, STARTS
 
-#: The Poisson ratios of an isotropic elastic sheet.
-POISSON = options.BoundedFloat(-1.0, 0.5, low_open=True)
+NU = options.BoundedFloat(-1.0, 0.5, low_open=True)
+KAPPA0 = options.BoundedFloat(-1.0, 1.0)
+THICKNESS = options.BoundedFloat(0.0, 10.0, low_open=True)
 
 
 def shell_options(f):
-    """``--hoop-bending``, ``--poisson`` and ``--start``, in that order in ``--help``."""
-    f = click.option("--start", type=click.Choice(STARTS), default=DEFAULT_START, show_default=True,
-                     help="Start of the reference's Newton solve: the reduced model's equilibrium, "
-                     "or the prestretch continuation from the flat sheet (independent of the "
-                     "reduced model).")(f)
-    f = click.option("--poisson", type=POISSON, default=0.0, show_default=True,
-                     help="Poisson coupling of the reference's bending (with --hoop-bending), "
-                     f"in {POISSON.range_text}.")(f)
-    return click.option("--hoop-bending", is_flag=True, help="Hoop (parallel) bending in the "
-                        "reference only (the reduced model has none): what the reduced model "
-                        "leaves out.")(f)
+    """``--poisson``, ``--kappa0``, ``--thickness-mm`` and ``--elements``, in that order in
+    ``--help``."""
+    f = click.option("--elements", type=click.IntRange(min=4, max=400), default=40, show_default=True,
+                     help="Cubic Hermite elements of the shell on the patch.")(f)
+    f = click.option("--thickness-mm", "thickness_mm", type=THICKNESS, default=None, metavar="MM",
+                     help="Bending rigidity from a thickness, D = sqrt(A_s A_t) t^2 / 12, instead "
+                     f"of the material's calibrated bending weights; in {THICKNESS.range_text}.")(f)
+    f = click.option("--kappa0", "kappa0_per_mm", type=KAPPA0, default=0.0, show_default=True,
+                     metavar="PER_MM", help="Natural curvature of the embroidered layer (1/mm; "
+                     f"> 0 curves it like the pop-up dome), in {KAPPA0.range_text}.")(f)
+    return click.option("--poisson", "nu", type=NU, default=0.3, show_default=True,
+                        help=f"Poisson ratio of the shell, in {NU.range_text}.")(f)
+
+
+def shell_params(nu: float, kappa0_per_mm: float, thickness_mm: float | None, elements: int):
+    from stitchswitch.fem_reference.revolution.params import ShellParams
+
+    return ShellParams(nu=nu, kappa0_per_mm=kappa0_per_mm, thickness_mm=thickness_mm,
+                       elements_inside=elements)

@@ -1,4 +1,6 @@
-"""``stitchswitch switch-force``: F(w) of pushing the apex from pop-up to pop-down (shell reference)."""
+"""``stitchswitch switch-force``: snap-through by the contact plate (shell of revolution): the
+force-displacement curve, the switching force in newtons, the energy barrier, both states, and
+whether the patch is bistable or springs back."""
 from __future__ import annotations
 
 import io
@@ -8,36 +10,63 @@ import pathlib
 import click
 
 from stitchswitch.cli import options
+from stitchswitch.cli.reference.shell_options import shell_options, shell_params
+from stitchswitch.errors import StitchSwitchError
 from stitchswitch.files.atomic import atomic_write_bytes, atomic_write_text
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
+
+STIFFNESS = options.BoundedFloat(0.0, 1e5, low_open=True)
 
 
 @click.command("switch-force", cls=options.Command)
 @click.option("--diameter", "-d", "diameter_mm", type=options.FINITE_FLOAT, required=True, metavar="MM")
 @click.option("--fill", "-p", type=options.FINITE_FLOAT, required=True, metavar="P")
 @options.material_opt
-@click.option("--steps", type=click.IntRange(min=4, max=400), default=30, show_default=True)
+@shell_options
+@click.option("--knit-stiffness", "knit_stiffness_n_per_m", type=STIFFNESS, default=200.0,
+              show_default=True, metavar="N_PER_M",
+              help="Tensile membrane stiffness of the bare knit (N/m): the force scale "
+              "(docs/force.md).")
+@click.option("--steps", type=click.IntRange(min=6, max=400), default=24, show_default=True,
+              help="Plate steps from the apex height h down to -1.5 h (the most it travels).")
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
-              metavar="FILE", help="Write the curve (w_mm, force) as CSV.")
+              metavar="FILE", help="Write the curve (w_mm, force_N) as CSV.")
 @click.option("--plot", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
               metavar="PNG", help="Plot the curve.")
 @options.json_opt
-def switch_force(diameter_mm, fill, material_path, steps, csv_path, plot, as_json):
-    """Push the apex of the pop-up equilibrium down to w = 0 with the outer edge held, and
-    report the reaction force F(w), the switching force (peak |F| before the snap) and the
-    energy barrier. Forces are in model units (the material scale is not calibrated to
-    newtons): compare designs by their ratios."""
-    from stitchswitch.fem_reference.switching import switching_curve
+def switch_force(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_mm, elements,
+                 knit_stiffness_n_per_m, steps, csv_path, plot, as_json):
+    """Press the pop-up patch with a rigid contact plate (held in its frame, as in the paper's
+    experiment) until it switches, and report the switching force (N), the energy barrier (mJ),
+    both stable states and whether the design is bistable or springs back."""
+    from dataclasses import replace
 
+    from stitchswitch.fem_reference.snap.path import switching_path
+    from stitchswitch.fem_reference.snap.states import bistability
+
+    for path, name in ((csv_path, "--csv"), (plot, "--plot")):
+        if path is not None and path.is_dir():
+            raise options.InputError(f"{name}: {str(path)!r} is a directory")
     patch = Patch(diameter_mm, fill)
+    params = replace(shell_params(nu, kappa0_per_mm, thickness_mm, elements),
+                     knit_stiffness_n_per_m=knit_stiffness_n_per_m)
     material = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
-    curve = switching_curve(patch, material, steps=steps)
+    try:
+        curve = switching_path(patch, material, params, steps=steps)
+    except StitchSwitchError as exc:          # a flat design: nothing to switch (exit 1)
+        raise click.ClickException(str(exc)) from None
+    out = curve.as_dict()
+    # bistable: the inverted state is a strict local minimum without load (whether or not this
+    # axisymmetric path reaches it)
+    out["verdict"] = bistability(patch, material, params).verdict
+    out["knit_stiffness_n_per_m"] = knit_stiffness_n_per_m
+    force_n = curve.force * curve.newton_per_n
     if csv_path is not None:
-        rows = "\n".join(f"{w:.6f},{f:.9g},{int(c)}" for w, f, c in
-                         zip(curve.w_mm, curve.force, curve.converged))
-        atomic_write_text(csv_path, "# stitchswitch switch-force, shell reference, force in model "
-                          f"units, d_mm={diameter_mm:g}, fill={fill:g}\nw_mm,force,converged\n{rows}\n")
+        rows = "\n".join(f"{w:.6f},{f:.9g}" for w, f in zip(curve.w_mm, force_n))
+        atomic_write_text(csv_path, "# stitchswitch switch-force, shell of revolution, plate radius "
+                          f"{curve.plate_radius_mm:.2f} mm, knit stiffness {knit_stiffness_n_per_m:g} N/m, "
+                          f"d_mm={diameter_mm:g}, fill={fill:g}\nw_mm,force_N\n{rows}\n")
     if plot is not None:
         import matplotlib
 
@@ -45,23 +74,35 @@ def switch_force(diameter_mm, fill, material_path, steps, csv_path, plot, as_jso
         import matplotlib.pyplot as plt
 
         fig, ax = plt.subplots(figsize=(6, 4), dpi=120)
-        ax.plot(curve.w_mm, -curve.force, "o-", ms=3)
-        ax.set_xlabel("apex height w (mm)")
-        ax.set_ylabel("push force -dE/dw (model units)")
-        ax.set_title(f"d = {diameter_mm:g} mm, p = {fill:g}: switching force {curve.switching_force:.3g}")
+        ax.plot(curve.w_mm, force_n, "o-", ms=3)
+        ax.axhline(curve.switching_force_n, color="k", lw=0.5, ls="--")
+        ax.set_xlabel("plate height w (mm)")
+        ax.set_ylabel("contact force (N)")
+        ax.set_title(f"d = {diameter_mm:g} mm, p = {fill:g}: switching force "
+                     f"{curve.switching_force_n:.3g} N ({out['verdict']})")
         ax.invert_xaxis()
         ax.grid(alpha=0.3)
         fig.tight_layout()
         buf = io.BytesIO()
-        fig.savefig(buf, format="png")
+        fig.savefig(buf, format="png", metadata={"Software": None})
         plt.close(fig)
         atomic_write_bytes(plot, buf.getvalue())
-    out = curve.as_dict()
     if as_json:
         click.echo(json.dumps(out))
         return
-    click.echo(f"d = {diameter_mm:g} mm, fill = {fill:g}: pop-up height {out['h_mm']:.2f} mm")
-    click.echo(f"switching force {out['switching_force']:.4g} (model units), snap at w = "
-               f"{out['w_snap_mm']:.2f} mm, energy barrier {out['energy_barrier']:.4g}")
+    up, down = out["popup"], out["switched"]
+    click.echo(f"d = {diameter_mm:g} mm, fill = {fill:g}: {out['verdict']} "
+               f"(plate radius {curve.plate_radius_mm:.1f} mm, knit stiffness "
+               f"{knit_stiffness_n_per_m:g} N/m)")
+    click.echo(f"switching force {out['switching_force_n']:.4g} N at plate height "
+               f"{out['w_switch_mm']:.2f} mm, energy barrier {out['energy_barrier_mj']:.4g} mJ")
+    click.echo(f"pop-up state:   h {up['h_mm']:.2f} mm, r_a {up['r_a_mm']:.2f}, z_a {up['z_a_mm']:.2f}, "
+               f"energy {up['energy_mj']:.4g} mJ")
+    click.echo(f"after the path: apex {down['apex_mm']:.2f} mm, r_a {down['r_a_mm']:.2f}, "
+               f"z_a {down['z_a_mm']:.2f}, energy {down['energy_mj']:.4g} mJ "
+               f"({'the inverted state' if curve.inverted else 'back on the pop-up side'})")
+    if not curve.limit_point:
+        click.echo("warning: the force rose to the end of the plate's travel (no limit point on "
+                   "this path); the switching force printed is the last force", err=True)
     if not out["all_converged"]:
-        click.echo("warning: some steps did not converge", err=True)
+        click.echo("warning: some plate steps did not converge", err=True)
