@@ -23,7 +23,7 @@ OUTPUT_PARAMS = {"out", "output", "plot", "preview_path", "mesh", "mesh_path", "
                  "profile_csv"}
 #: Commands being rewritten elsewhere, whose output options still have to use OutputFile
 #: (``cli/reference``): listed here until then.
-PENDING = {("fem-solve", "mesh"), ("switch-force", "csv_path"), ("switch-force", "plot")}
+PENDING = set()
 
 
 def test_every_output_file_option_is_checked_at_parse_time():
@@ -59,6 +59,13 @@ CASES = {
     "validate --report": (["validate", "d.csv", "--report", "{OUT}"], ""),
     "fabricate -o": (["fabricate", "design.json", "-o", "{OUT}"], ""),
     "demo -o": (["demo", "-o", "{OUT}"], ""),
+    "fem-solve --mesh": (["fem-solve", "-d", "40", "-p", "0.8", "--mesh", "{OUT}"], ".vtu"),
+    "switch-force --csv": (["switch-force", "-d", "60", "-p", "0.8", "--csv", "{OUT}"], ".csv"),
+    "switch-force --plot": (["switch-force", "-d", "60", "-p", "0.8", "--csv", "c.csv", "--plot",
+                             "{OUT}"], ".png"),
+    "fem-check --report": (["fem-check", "--designs", "40,0.8", "--report", "{OUT}"], ""),
+    "bistability-map --png": (["bistability-map", "--diameters", "40", "--fills", "0.8", "--png",
+                               "{OUT}"], ".png"),
 }
 
 

@@ -2,13 +2,13 @@
 from __future__ import annotations
 
 import json
-import pathlib
 
 import click
 
 from stitchswitch.cli import options
 from stitchswitch.cli.reference.shell_options import shell_options, shell_params
 from stitchswitch.files.atomic import atomic_write_bytes
+from stitchswitch.files.outputs import together
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
@@ -33,7 +33,7 @@ def _values(text: str, name: str, kind):
               help="Fill fractions.")
 @options.material_opt
 @shell_options
-@click.option("--png", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
+@click.option("--png", type=options.OutputFile((".png",)), default=None,
               metavar="FILE", help="Draw the regions.")
 @options.json_opt
 def bistability_map_cmd(diameters, fills, material_path, nu, kappa0_per_mm, thickness_mm, elements,
@@ -49,12 +49,11 @@ def bistability_map_cmd(diameters, fills, material_path, nu, kappa0_per_mm, thic
     if kappa0_per_mm < 0:
         raise options.InputError(f"--kappa0: {kappa0_per_mm:g} < 0; the map of -kappa0 is the same "
                                  "with the two states swapped")
-    if png is not None and png.is_dir():
-        raise options.InputError(f"--png: {str(png)!r} is a directory")
     material = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
     result = bistability_map(ds, ps, material, shell_params(nu, kappa0_per_mm, thickness_mm, elements))
     if png is not None:
-        atomic_write_bytes(png, map_png(result))
+        with together({"--png": png}) as tmp:
+            atomic_write_bytes(tmp["--png"], map_png(result))
     if as_json:
         click.echo(json.dumps({**result.as_dict(), "counts": result.counts()}))
     else:

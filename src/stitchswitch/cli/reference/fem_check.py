@@ -8,7 +8,7 @@ import click
 
 from stitchswitch.cli import options
 from stitchswitch.cli.reference.shell_options import shell_options, shell_params
-from stitchswitch.files.atomic import atomic_write_text
+from stitchswitch.files.outdir import check_outdir, previous_output, write_outdir
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
 
@@ -32,13 +32,17 @@ def _designs(text: str | None):
     return tuple(out)
 
 
+GENERATOR = "stitchswitch fem-check"
+
+
 @click.command("fem-check", cls=options.Command)
 @click.option("--designs", default=None, metavar="D,P;D,P",
               help="Designs to check (default: d 25, 50, 90 mm x p 0.6, 0.8, 1.0).")
 @options.material_opt
 @shell_options
 @click.option("--report", type=click.Path(file_okay=False, path_type=pathlib.Path), default=None,
-              metavar="DIR", help="Also write report.md and report.json into DIR.")
+              metavar="DIR", help="Also write report.md and report.json into DIR (a new folder, or "
+                                  "one this command wrote before).")
 @options.json_opt
 def fem_check_cmd(designs, material_path, nu, kappa0_per_mm, thickness_mm, elements, report, as_json):
     """Model error of the reduced model (N = 300) against the independent shell of revolution,
@@ -51,16 +55,18 @@ def fem_check_cmd(designs, material_path, nu, kappa0_per_mm, thickness_mm, eleme
     designs = _designs(designs)
     params = shell_params(nu, kappa0_per_mm, thickness_mm, elements)
     material = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
-    if report is not None and report.exists() and not report.is_dir():
-        raise options.InputError(f"--report: {str(report)!r} exists and is not a directory")
+    previous = previous_output(("report.json", "report.md"), GENERATOR)
+    if report is not None:                         # refused before any work
+        check_outdir(report, previous=previous, what="--report")
     result = model_error(designs, material, params)
     text = table_text(result)
     if report is not None:
-        report.mkdir(parents=True, exist_ok=True)
-        atomic_write_text(report / "report.json", json.dumps(result.as_dict(), indent=1, default=float)
-                          + "\n")
-        atomic_write_text(report / "report.md", "# Reduced model against the shell of revolution\n\n"
-                          "```\n" + text + "\n```\n")
+        record = {"generator": GENERATOR, **result.as_dict()}
+        write_outdir(report, {
+            "report.json": (json.dumps(record, indent=1, default=float) + "\n").encode(),
+            "report.md": ("# Reduced model against the shell of revolution\n\n```\n" + text
+                          + "\n```\n").encode(),
+        }, previous=previous)
     click.echo(json.dumps(result.as_dict(), default=float) if as_json else text)
     if not result.all_passed:
         raise SystemExit(1)

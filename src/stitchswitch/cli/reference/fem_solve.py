@@ -2,13 +2,15 @@
 from __future__ import annotations
 
 import json
-import pathlib
+import logging
 
 import click
 
 from stitchswitch.cli import options
 from stitchswitch.cli.output import key_value_table
 from stitchswitch.cli.reference.shell_options import shell_options, shell_params
+from stitchswitch.files.outputs import together
+from stitchswitch.files.revolution import MESH_EXTENSIONS
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 
@@ -18,7 +20,7 @@ from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 @click.option("--fill", "-p", type=options.FINITE_FLOAT, required=True, metavar="P")
 @options.material_opt
 @shell_options
-@click.option("--mesh", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
+@click.option("--mesh", type=options.OutputFile(MESH_EXTENSIONS), default=None,
               metavar="FILE", help="Write the surface of revolution (.vtu, .ply, .obj, ...).")
 @options.json_opt
 def fem_solve(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_mm, elements, mesh, as_json):
@@ -36,7 +38,9 @@ def fem_solve(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_mm,
     if mesh is not None:
         _, r, z, _ = st.profile()
         points, tris = surface_of_revolution(r, z - z[-1])
-        write_mesh(mesh, points, tris, {"height_mm": points[:, 2]} if mesh.suffix == ".vtu" else None)
+        with together({"--mesh": mesh}) as tmp:
+            write_mesh(tmp["--mesh"], points, tris,
+                       {"height_mm": points[:, 2]} if mesh.suffix == ".vtu" else None)
     out = {"d_mm": diameter_mm, "fill": fill, "h_mm": kp.h_mm, "r_a_mm": kp.r_a_mm,
            "z_a_mm": kp.z_a_mm, "r_b_mm": kp.r_b_mm, "z_b_mm": kp.z_b_mm, "energy": st.energy,
            "residual": st.residual, "converged": st.converged, "certified": st.certified,
@@ -48,5 +52,5 @@ def fem_solve(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_mm,
         click.echo(key_value_table(((k, f"{v:.4g}" if isinstance(v, float) else v)
                                     for k, v in out.items()), gap=1))
     if not st.certified:
-        click.echo("warning: the shell solve is not certified (not converged or not a strict "
-                   "minimum)", err=True)
+        logging.getLogger(__name__).warning(
+            "the shell solve is not certified (not converged or not a strict minimum)")

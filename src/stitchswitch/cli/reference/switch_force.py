@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import io
 import json
-import pathlib
+import logging
 
 import click
 
@@ -13,6 +13,7 @@ from stitchswitch.cli import options
 from stitchswitch.cli.reference.shell_options import shell_options, shell_params
 from stitchswitch.errors import StitchSwitchError
 from stitchswitch.files.atomic import atomic_write_bytes, atomic_write_text
+from stitchswitch.files.outputs import check_distinct, together
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 
@@ -30,10 +31,10 @@ STIFFNESS = options.BoundedFloat(0.0, 1e5, low_open=True)
               "(docs/force.md).")
 @click.option("--steps", type=click.IntRange(min=6, max=400), default=24, show_default=True,
               help="Plate steps from the apex height h down to -1.5 h (the most it travels).")
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
+@click.option("--csv", "csv_path", type=options.OutputFile((".csv",)), default=None,
               metavar="FILE", help="Write the curve (w_mm, force_N) as CSV.")
-@click.option("--plot", type=click.Path(dir_okay=False, path_type=pathlib.Path), default=None,
-              metavar="PNG", help="Plot the curve.")
+@click.option("--plot", type=options.OutputFile((".png",)), default=None,
+              metavar="PNG", help="Plot the curve (together with --csv: both or neither).")
 @options.json_opt
 def switch_force(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_mm, elements,
                  knit_stiffness_n_per_m, steps, csv_path, plot, as_json):
@@ -45,9 +46,8 @@ def switch_force(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_
     from stitchswitch.fem_reference.snap.path import switching_path
     from stitchswitch.fem_reference.snap.states import bistability
 
-    for path, name in ((csv_path, "--csv"), (plot, "--plot")):
-        if path is not None and path.is_dir():
-            raise options.InputError(f"{name}: {str(path)!r} is a directory")
+    outputs = {"--csv": csv_path, "--plot": plot}
+    check_distinct(outputs)
     patch = Patch(diameter_mm, fill)
     params = replace(shell_params(nu, kappa0_per_mm, thickness_mm, elements),
                      knit_stiffness_n_per_m=knit_stiffness_n_per_m)
@@ -62,12 +62,41 @@ def switch_force(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_
     out["verdict"] = bistability(patch, material, params).verdict
     out["knit_stiffness_n_per_m"] = knit_stiffness_n_per_m
     force_n = curve.force * curve.newton_per_n
-    if csv_path is not None:
+    with together(outputs) as tmp:
+        _write(tmp, curve, force_n, out, diameter_mm, fill, knit_stiffness_n_per_m)
+    if as_json:
+        click.echo(json.dumps(out))
+        return
+    up, down = out["popup"], out["switched"]
+    click.echo(f"d = {diameter_mm:g} mm, fill = {fill:g}: {out['verdict']} "
+               f"(plate radius {curve.plate_radius_mm:.1f} mm, knit stiffness "
+               f"{knit_stiffness_n_per_m:g} N/m)")
+    click.echo(f"switching force {out['switching_force_n']:.4g} N at plate height "
+               f"{out['w_switch_mm']:.2f} mm, energy barrier {out['energy_barrier_mj']:.4g} mJ")
+    click.echo(f"pop-up state:   h {up['h_mm']:.2f} mm, r_a {up['r_a_mm']:.2f}, z_a {up['z_a_mm']:.2f}, "
+               f"energy {up['energy_mj']:.4g} mJ")
+    click.echo(f"after the path: apex {down['apex_mm']:.2f} mm, r_a {down['r_a_mm']:.2f}, "
+               f"z_a {down['z_a_mm']:.2f}, energy {down['energy_mj']:.4g} mJ "
+               f"({'the inverted state' if curve.inverted else 'back on the pop-up side'})")
+    log = logging.getLogger(__name__)
+    if not curve.limit_point:
+        log.warning("the force rose to the end of the plate's travel (no limit point on this "
+                    "path); the switching force printed is the last force")
+    if not out["all_converged"]:
+        log.warning("some plate steps did not converge")
+
+
+
+def _write(tmp, curve, force_n, out, diameter_mm, fill, knit_stiffness_n_per_m):
+    """The CSV of the force-displacement curve and its plot, into the temporary paths of
+    ``files.outputs.together`` (None: not asked for)."""
+    if tmp.get("--csv") is not None:
         rows = "\n".join(f"{w:.6f},{f:.9g}" for w, f in zip(curve.w_mm, force_n))
-        atomic_write_text(csv_path, "# stitchswitch switch-force, shell of revolution, plate radius "
-                          f"{curve.plate_radius_mm:.2f} mm, knit stiffness {knit_stiffness_n_per_m:g} N/m, "
-                          f"d_mm={diameter_mm:g}, fill={fill:g}\nw_mm,force_N\n{rows}\n")
-    if plot is not None:
+        atomic_write_text(tmp["--csv"], "# stitchswitch switch-force, shell of revolution, plate "
+                          f"radius {curve.plate_radius_mm:.2f} mm, knit stiffness "
+                          f"{knit_stiffness_n_per_m:g} N/m, d_mm={diameter_mm:g}, fill={fill:g}\n"
+                          f"w_mm,force_N\n{rows}\n")
+    if tmp.get("--plot") is not None:
         import matplotlib
 
         matplotlib.use("Agg")
@@ -86,23 +115,4 @@ def switch_force(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_
         buf = io.BytesIO()
         fig.savefig(buf, format="png", metadata={"Software": None})
         plt.close(fig)
-        atomic_write_bytes(plot, buf.getvalue())
-    if as_json:
-        click.echo(json.dumps(out))
-        return
-    up, down = out["popup"], out["switched"]
-    click.echo(f"d = {diameter_mm:g} mm, fill = {fill:g}: {out['verdict']} "
-               f"(plate radius {curve.plate_radius_mm:.1f} mm, knit stiffness "
-               f"{knit_stiffness_n_per_m:g} N/m)")
-    click.echo(f"switching force {out['switching_force_n']:.4g} N at plate height "
-               f"{out['w_switch_mm']:.2f} mm, energy barrier {out['energy_barrier_mj']:.4g} mJ")
-    click.echo(f"pop-up state:   h {up['h_mm']:.2f} mm, r_a {up['r_a_mm']:.2f}, z_a {up['z_a_mm']:.2f}, "
-               f"energy {up['energy_mj']:.4g} mJ")
-    click.echo(f"after the path: apex {down['apex_mm']:.2f} mm, r_a {down['r_a_mm']:.2f}, "
-               f"z_a {down['z_a_mm']:.2f}, energy {down['energy_mj']:.4g} mJ "
-               f"({'the inverted state' if curve.inverted else 'back on the pop-up side'})")
-    if not curve.limit_point:
-        click.echo("warning: the force rose to the end of the plate's travel (no limit point on "
-                   "this path); the switching force printed is the last force", err=True)
-    if not out["all_converged"]:
-        click.echo("warning: some plate steps did not converge", err=True)
+        atomic_write_bytes(tmp["--plot"], buf.getvalue())
