@@ -25,14 +25,18 @@ READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_
 
 def _plotter(scene3d):
     import pyvista as pv
+    from vtkmodules.vtkCommonCore import vtkLogger
 
     pv.OFF_SCREEN = True
+    if not os.environ.get("DISPLAY"):     # VTK falls back to offscreen; its X warning is noise
+        vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_ERROR)
     pl = pv.Plotter(off_screen=True, window_size=(600, 450))
     pl.set_background("white")
     pl.add_mesh(scene3d.surface, scalars="height (mm)", cmap="coolwarm", clim=scene3d.clim,
                 show_scalar_bar=False, name="surface")
     pl.add_mesh(scene3d.lines, color="black", line_width=1.5, name="lines")
     pl.view_isometric()
+    pl.reset_camera()
     return pl
 
 
@@ -141,6 +145,12 @@ def build_app(session, server=None):
         guarded(session.save)()
         state.message = f"saved {session.document.path}"
 
+    def on_apply(index):
+        guarded(session.apply_candidate)(int(index))
+
+    def on_delete():
+        guarded(session.remove)(session.state.selected)
+
     def on_violation(index):
         v = session.violations[index]
         if v.patches:
@@ -169,22 +179,25 @@ def build_app(session, server=None):
             with html.Div(v_if="mode == 'design'", classes="pa-2"):
                 html.H4("Patch {{ selected || '(none: click a piece to add one)' }}", id="inspector-title")
                 with html.Div(v_if="selected"):
-                    v3.VSlider(v_model=("diameter",), label="d (mm)", min=20, max=150, step=0.5,
-                               thumb_label=True, id="slider-d", hide_details=True)
-                    v3.VSlider(v_model=("fill",), label="fill", min=0.05, max=1.0, step=0.005,
-                               thumb_label=True, id="slider-fill", hide_details=True)
+                    with html.Div(id="slider-d"):
+                        v3.VSlider(v_model=("diameter",), label="d (mm)", min=20, max=150, step=0.5,
+                                   thumb_label=True, hide_details=True)
+                    with html.Div(id="slider-fill"):
+                        v3.VSlider(v_model=("fill",), label="fill", min=0.05, max=1.0, step=0.005,
+                                   thumb_label=True, hide_details=True)
                     v3.VSelect(v_model=("patch_state",), items=("['up', 'down']",), label="state",
                                density="compact", hide_details=True)
                     html.Div("h {{ readout.h }} mm | r_a {{ readout.r_a }} | z_a {{ readout.z_a }} | "
                              "r_b {{ readout.r_b }} | z_b {{ readout.z_b }} mm | force "
                              "{{ readout.force }} N {{ readout.message }}", id="readout",
                              classes="text-body-2 my-1")
-                    v3.VBtn("Delete patch", click=lambda: guarded(session.remove)(session.state.selected),
+                    v3.VBtn("Delete patch", click=on_delete,
                             size="small", id="delete")
                 v3.VDivider(classes="my-2")
                 html.H4("Inverse design")
-                v3.VTextField(v_model=("target_h",), label="target h (mm)", density="compact",
-                              hide_details=True, id="target-h")
+                with html.Div(id="target-h"):
+                    v3.VTextField(v_model=("target_h",), label="target h (mm)", density="compact",
+                                  hide_details=True)
                 v3.VTextField(v_model=("target_ra",), label="target r_a (mm, optional)",
                               density="compact", hide_details=True)
                 v3.VTextField(v_model=("target_dmax",), label="max d (mm, optional)",
@@ -196,8 +209,7 @@ def build_app(session, server=None):
                     html.Span("d {{ c.d_mm }} mm, fill {{ c.fill }}: h {{ c.h_mm }}, r_a {{ c.r_a_mm }},"
                               " F {{ c.force_N }} N, {{ c.feasible ? 'passes the check' : "
                               "c.check_errors + ' check errors' }} ")
-                    v3.VBtn("Apply", size="x-small", click=(lambda index: guarded(
-                        session.apply_candidate)(int(index)), "[c.index]"),
+                    v3.VBtn("Apply", size="x-small", click=(on_apply, "[c.index]"),
                         classes="apply-candidate")
                 v3.VDivider(classes="my-2")
                 html.H4("Constraints: {{ n_errors }} error(s)", id="check-title")
@@ -210,8 +222,8 @@ def build_app(session, server=None):
                 v3.VBtn("Group into hoopings", click=on_group, size="small", id="group")
                 with html.Div(v_for="h in hoopings", key="h.k", classes="text-body-2 hooping"):
                     html.Span("{{ h.k }}. {{ h.hoop }}: {{ h.patches }}")
-                v3.VTextField(v_model=("export_dir",), label="export folder", density="compact",
-                              id="export-dir")
+                with html.Div(id="export-dir"):
+                    v3.VTextField(v_model=("export_dir",), label="export folder", density="compact")
                 v3.VBtn("Export", click=on_export, size="small", id="export")
                 with html.Div(v_for="f in exported", key="f", classes="text-caption exported"):
                     html.Span("{{ f }}")
@@ -223,6 +235,7 @@ def build_app(session, server=None):
                 with html.Div(style="flex:1; min-width:0", id="view3d"):
                     view = vtk_widgets.VtkLocalView(pl.ren_win)
                     ctrl.view_update = view.update
+                    ctrl.view_reset_camera = view.reset_camera
     push()
     return server
 
