@@ -44,7 +44,7 @@ def _source(source, rectangle, output):
 @click.command(cls=options.Command)
 @click.argument("source", required=False, type=click.Path(dir_okay=False, exists=True))
 @click.option("--rectangle", default=None, metavar="WxH", help="Start from one rectangular piece, WIDTHxHEIGHT mm.")
-@click.option("-o", "--output", default=None, type=click.Path(dir_okay=False),
+@click.option("-o", "--output", default=None, type=options.OutputFile((".json",), as_str=True),
               help="Where a design started from a pattern or --rectangle is saved.")
 @click.option("--port", default=8765, show_default=True, type=click.IntRange(1, 65535))
 @click.option("--host", default="127.0.0.1", show_default=True,
