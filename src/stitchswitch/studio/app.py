@@ -9,7 +9,9 @@ hoop grouping drawn on the canvas, and export of the fabrication folder.
 """
 from __future__ import annotations
 
+import asyncio
 import os
+import time
 
 from stitchswitch.errors import InvalidInputError, StitchSwitchError
 from stitchswitch.reduced.design_space.inverse import InverseTarget
@@ -52,18 +54,22 @@ def build_app(session, server=None):
     state, ctrl = server.state, server.controller
     pl = _plotter(session.scene3d)
     drag = {"id": None, "start": None}
+    pending = {"refresh": None}
 
-    def push(readout_only: bool = False) -> None:
+    def push_readout() -> None:
+        r = session.selected_readout()
+        state.readout = ({} if r is None else
+                         {k: (None if r.keypoints_mm[key] is None else round(r.keypoints_mm[key], 2))
+                          for k, key in READOUT_KEYS}
+                         | {"force": None if r.force_N is None else round(r.force_N, 3),
+                            "message": r.message})
+
+    def push() -> None:
         s = session.state
         p = s.selected_patch()
-        r = session.selected_readout()
         with state:
+            push_readout()
             state.selected = s.selected
-            state.readout = ({} if r is None else
-                             {k: (None if r.keypoints_mm[key] is None else round(r.keypoints_mm[key], 2))
-                              for k, key in READOUT_KEYS}
-                             | {"force": None if r.force_N is None else round(r.force_N, 3),
-                                "message": r.message})
             if p is not None:
                 state.diameter, state.fill, state.patch_state = p.diameter_mm, p.fill, p.state
             state.canvas_svg = session.canvas_svg()
@@ -74,7 +80,13 @@ def build_app(session, server=None):
             state.n_patches = len(s.design.patches)
             state.edits = s.changed
         pl.mapper.scalar_range = session.scene3d.clim
+        t0 = time.perf_counter()
         ctrl.view_update()
+        # sent after the view's geometry: when the page shows it, the 3D data has arrived
+        state.timings = {k: round(1000 * v, 1) for k, v in session.timings_s.items()} | {
+            "view_send_s": round(1000 * (time.perf_counter() - t0), 1)}
+        state.scene_stamp = s.changed
+        state.flush()
 
     def guarded(fn):
         def run(*args, **kwargs):
@@ -112,7 +124,23 @@ def build_app(session, server=None):
         p = session.state.selected_patch()
         if p is None or (p.diameter_mm, p.fill, p.state) == (float(diameter), float(fill), patch_state):
             return
-        guarded(session.edit)(p.id, diameter_mm=float(diameter), fill=float(fill), state=patch_state)
+        try:            # the readout first (the map answers at once), then the check and 3D view
+            session.edit(p.id, refresh=False, diameter_mm=float(diameter), fill=float(fill),
+                         state=patch_state)
+            push_readout()
+            state.readout_stamp = session.state.changed
+            state.flush()
+        except (InvalidInputError, StitchSwitchError, OSError) as exc:
+            state.message = f"Error: {exc}"
+        # the check and the 3D view after the readout has gone out; slider steps that arrive
+        # meanwhile join the pending refresh, which picks up the latest design
+        if pending["refresh"] is None:
+            pending["refresh"] = asyncio.get_event_loop().call_later(0.001, refresh_later)
+
+    def refresh_later():
+        pending["refresh"] = None
+        session.refresh()
+        push()
 
     def on_inverse():
         try:
@@ -160,7 +188,8 @@ def build_app(session, server=None):
                   "fab_mode": "garment", "export_dir": os.path.join(
                       os.path.dirname(os.path.abspath(session.document.path)), "fabrication"),
                   "target_h": 15.0, "target_ra": "", "target_dmax": "", "target_pmin": "",
-                  "diameter": 60.0, "fill": 0.5, "patch_state": "up"})
+                  "diameter": 60.0, "fill": 0.5, "patch_state": "up", "readout_stamp": 0,
+                  "timings": {}})
 
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
         layout.title.set_text("stitchswitch studio")
@@ -174,6 +203,10 @@ def build_app(session, server=None):
             v3.VBtn("Save", click=on_save, id="save")
             html.Span("{{ dirty ? 'unsaved changes' : 'saved' }}", classes="text-caption mx-2",
                       id="dirty")
+            html.Span("{{ edits }}", id="edits", style="display:none")
+            html.Span("{{ scene_stamp }}", id="scene-stamp", style="display:none")
+            html.Span("{{ readout_stamp }}", id="readout-stamp", style="display:none")
+            html.Span("{{ JSON.stringify(timings) }}", id="timings", style="display:none")
         with layout.drawer as drawer:
             drawer.width = 380
             with html.Div(v_if="mode == 'design'", classes="pa-2"):

@@ -41,10 +41,11 @@ class Session:
             self.scene3d.update(self.state.design)
         self.timings_s = {"check_s": t1 - t0, "scene_s": time.perf_counter() - t1}
 
-    def after_edit(self) -> None:
+    def after_edit(self, refresh: bool = True) -> None:
         self.document.autosave(self.state.design)
         self.order = None
-        self.refresh()
+        if refresh:
+            self.refresh()
 
     def selected_readout(self):
         p = self.state.selected_patch()
@@ -68,9 +69,11 @@ class Session:
         self.state.move_patch(patch_id, centre_mm)
         self.after_edit()
 
-    def edit(self, patch_id, **changes) -> None:
+    def edit(self, patch_id, refresh: bool = True, **changes) -> None:
+        """Edit a patch; ``refresh`` False leaves the check and the scene to a later
+        ``refresh()`` (the page shows the readout first)."""
         self.state.edit_patch(patch_id, **changes)
-        self.after_edit()
+        self.after_edit(refresh)
 
     def remove(self, patch_id) -> None:
         self.state.remove_patch(patch_id)
