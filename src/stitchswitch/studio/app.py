@@ -171,7 +171,8 @@ def build_app(session, server=None):
 
     def on_save():
         guarded(session.save)()
-        state.message = f"saved {session.document.path}"
+        if not state.message:
+            state.message = f"saved {session.document.path}"
 
     def on_apply(index):
         guarded(session.apply_candidate)(int(index))
