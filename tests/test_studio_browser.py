@@ -1,10 +1,10 @@
-"""End to end in a real browser (Debian's chromium through Playwright): the studio on the
-tennis-pocket demo design; add a patch by clicking on the piece, drag it, move the fill slider
-and see the readout and the 3D view change, run inverse design and apply a candidate, drag a
-patch over the piece edge and see the violation appear and clear, save and check the saved
-file with ``stitchswitch check``, then group into hoopings and export a JEF that the tests'
-own decoder reads back with the expected extent. With STUDIO_SCREENSHOTS=DIR the screenshots
-of docs/studio.md are written to DIR."""
+"""End to end in a real browser (Debian's chromium through Playwright): the studio on the tennis-
+pocket demo design; add a patch by clicking on the piece, delete it with the Delete key and
+undo, drag it, move the fill slider and see the readout and the 3D view change, run inverse
+design and apply a candidate, drag a patch over the piece edge and see the violation appear and
+clear, save and check the saved file with ``stitchswitch check``, then group into hoopings and
+export a JEF that the tests' own decoder reads back with the expected extent. With
+STUDIO_SCREENSHOTS=DIR the screenshots of docs/studio.md are written to DIR."""
 import json
 import os
 import re
@@ -63,6 +63,11 @@ def test_studio_in_chromium(tmp_path):
             page.mouse.click(*to_px(page, view, 60.0, 150.0))
             page.wait_for_function("document.querySelectorAll('#canvas circle').length == 2")
             assert page.locator("#inspector-title").inner_text() == "Patch p1"
+            # Delete removes it, undo brings it back
+            page.keyboard.press("Delete")
+            page.wait_for_function("document.querySelectorAll('#canvas circle').length == 1")
+            page.locator("#undo").click()
+            page.wait_for_function("document.querySelectorAll('#canvas circle').length == 2")
             # drag it 40 mm to the right
             drag(page, to_px(page, view, 60.0, 150.0), to_px(page, view, 100.0, 150.0))
             page.wait_for_function("Number(document.querySelector('#canvas circle[data-patch=p1]')"

@@ -2,7 +2,8 @@
 ``Session`` and serves it.
 
 Design Mode: the canvas (SVG from ``canvas``; a press on a patch selects it, releasing
-elsewhere moves it, a click on an empty spot of a piece adds a patch), the inspector
+elsewhere moves it, a click on an empty spot of a piece adds a patch, Delete removes the
+selected patch), the inspector
 (diameter and fill sliders, state, the live readout), the 3D view (WebGL in the browser, the
 scene of ``scene3d``), the inverse-design panel and the constraint panel. Fabrication Mode:
 hoop grouping drawn on the canvas, and export of the fabrication folder.
@@ -177,6 +178,10 @@ def build_app(session, server=None):
     def on_apply(index):
         guarded(session.apply_candidate)(int(index))
 
+    def on_key(key):
+        if key in ("Delete", "Backspace") and session.state.selected is not None:
+            on_delete()
+
     def on_delete():
         guarded(session.remove)(session.state.selected)
 
@@ -265,7 +270,8 @@ def build_app(session, server=None):
         with layout.content:
             with html.Div(style="display:flex; height:100%; width:100%"):
                 html.Div(v_html=("canvas_svg",), id="canvas", style="flex:1; min-width:0; user-select:none",
-                         mousedown=(on_down, POINTER), mouseup=(on_up, POINTER))
+                         mousedown=(on_down, POINTER), mouseup=(on_up, POINTER), tabindex="0",
+                         keydown=(on_key, "[$event.key]"))
                 with html.Div(style="flex:1; min-width:0", id="view3d"):
                     view = vtk_widgets.VtkLocalView(pl.ren_win)
                     ctrl.view_update = view.update
