@@ -83,6 +83,7 @@ def test_studio_in_chromium(tmp_path):
             page.wait_for_timeout(500)
             assert readout_h(page) != h0
             assert page.locator("#view3d").screenshot() != before
+            assert page.locator("#profile polyline").count() == 1        # the profile plot
             shot(page, tmp_path, "design")
             # inverse design for h = 12 mm, applied to the selected patch
             page.locator("#target-h input").fill("12")

@@ -3,6 +3,7 @@ undo / redo, the live readout, the check, inverse apply, save (byte-identical wh
 autosave, grouping and export."""
 import json
 import os
+import re
 
 import numpy as np
 import pytest
@@ -16,6 +17,7 @@ from stitchswitch.reduced.design_space.cache import default_map
 from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import fabrication, inverse_panel, live_check
 from stitchswitch.studio.persist import Document, sidecar_path
+from stitchswitch.studio.profile_plot import profile_svg
 from stitchswitch.studio.readout import heights_mm, readout
 from stitchswitch.studio.state import StudioState
 
@@ -95,6 +97,12 @@ def test_readout_follows_the_map():
     s = StudioState(design)
     pid = s.add_patch((200.0, 150.0), diameter_mm=60.0, fill=0.8)
     assert heights_mm(dmap, s.design) == {pid: b.keypoints_mm["h_mm"]}
+    svg = profile_svg(b.r_mm, b.z_mm)
+    pts = np.array([[float(v) for v in p.split(",")]
+                    for p in re.search(r'data-profile="1" points="([^"]+)"', svg).group(1).split()])
+    assert -pts[:, 1].min() == pytest.approx(float(b.z_mm.max()), abs=0.01)     # the apex
+    assert pts[:, 0].max() == pytest.approx(float(b.r_mm.max()), abs=0.01)
+    assert profile_svg(None, None) == ""
     out = readout(dmap, 1000.0, 0.5)
     assert not out.in_domain and "outside the map's domain" in out.message
 

@@ -12,6 +12,7 @@ page (``app``, trame) only binds widgets to them.
 * ``inverse_panel``: ``candidates(target, dmap, state)`` and ``apply``.
 * ``persist``: ``Document``, saving (byte-identical when unchanged) and the autosave sidecar.
 * ``fabrication``: ``hoopings`` (grouping and order) and ``export`` (``fabricate``).
+* ``profile_plot``: ``profile_svg``, the selected patch's profile for the inspector.
 * ``canvas``: the 2D canvas as SVG markup, and the mapping of a click back to garment mm.
 * ``scene3d``: the 3D view's pyvista meshes, built by ``preview3d.scene.build_scene``.
 * ``session``: ``Session``, everything the page shows, recomputed after each action.

@@ -17,6 +17,7 @@ import time
 from stitchswitch.errors import InvalidInputError, StitchSwitchError
 from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import canvas, live_check
+from stitchswitch.studio.profile_plot import profile_svg
 
 #: the pointer expression passed to the canvas handlers: position on the SVG and its size, px
 POINTER = ("[$event.clientX - $event.currentTarget.getBoundingClientRect().left, "
@@ -59,6 +60,7 @@ def build_app(session, server=None):
 
     def push_readout() -> None:
         r = session.selected_readout()
+        state.profile_svg = "" if r is None else profile_svg(r.r_mm, r.z_mm)
         state.readout = ({} if r is None else
                          {k: (None if r.keypoints_mm[key] is None else round(r.keypoints_mm[key], 2))
                           for k, key in READOUT_KEYS}
@@ -230,6 +232,7 @@ def build_app(session, server=None):
                              "r_b {{ readout.r_b }} | z_b {{ readout.z_b }} mm | force "
                              "{{ readout.force }} N {{ readout.message }}", id="readout",
                              classes="text-body-2 my-1")
+                    html.Div(v_html=("profile_svg",), id="profile")
                     v3.VBtn("Delete patch", click=on_delete,
                             size="small", id="delete")
                 v3.VDivider(classes="my-2")
