@@ -21,6 +21,7 @@ LAYERS = [
     ("stitchswitch.layout.fabrication",),
     ("stitchswitch.preview3d",),
     ("stitchswitch.demos",),
+    ("stitchswitch.studio",),
     ("stitchswitch.cli",),
 ]
 #: Modules placed by name: the package root re-exports the model's entry points (stitchswitch.solve,

@@ -32,6 +32,7 @@ COMMANDS = {
     "place": "design.place:place",
     "check": "design.check:check",
     "preview": "design.preview:preview",
+    "studio": "studio:studio",
 }
 
 

@@ -1,0 +1,134 @@
+"""Benchmark: the studio in headless Chromium on the 40-patch benchmark design of
+bench_preview.py (targets: slider move -> readout and 3D view updated, p95 <= 100 ms; add or
+move a patch -> check panel updated, p95 <= 150 ms; first load to an interactive page <= 3 s).
+
+Measured from the browser (Debian's chromium driven by Playwright, tests/studio_driver.py):
+
+* ``first_load``: ``page.goto`` until the canvas shows the 40 patches (server already running;
+  the server's own start, map load and first scene, is reported as ``server_start``);
+* ``slider_readout``: one step of the fill slider until the page shows the new readout (sent
+  before the check and the scene are recomputed);
+* ``slider``: one step of the fill slider (a key press on its thumb) until the page has both
+  the new readout and the 3D view's new geometry (a stamp the server sends after the view's
+  data, so it arrives after it on the same websocket), with the server's share of it:
+  ``check``, ``scene`` (``preview3d.scene.build_scene`` of the whole design) and ``view_send``
+  (serializing the VTK scene for the browser);
+* ``move``: a drag of a patch by 4 mm until the check panel shows the new check (the edit
+  counter the server sends with it), alternating back and forth.
+
+The machine is shared: the 1-minute load average is printed with the figures.
+
+    python benchmarks/bench_studio.py [--runs N] [--json]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests"))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "src"))
+
+from bench_preview import design_40  # noqa: E402
+from studio_driver import browser_page, studio_server, to_px  # noqa: E402
+
+TARGETS = {"slider": 0.100, "move": 0.150, "first_load": 3.0}
+
+
+def _stamp(page, sel: str) -> int:
+    return int(page.locator(sel).inner_text() or 0)
+
+
+def _wait_stamp(page, sel: str, above: int) -> None:
+    page.wait_for_function(f"Number(document.querySelector('{sel}').innerText) > {above}",
+                           polling="raf", timeout=30000)
+
+
+def measure(runs: int) -> dict:
+    from stitchswitch.layout.garment.design_io import load_design
+    from stitchswitch.studio.canvas import view_of
+
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "design40.json")
+        design_40(path)
+        design = load_design(path)
+        view = view_of(design)
+        t0 = time.perf_counter()
+        with studio_server(path) as (url, _):
+            server_start = time.perf_counter() - t0
+            t1 = time.perf_counter()
+            with browser_page(url) as page:
+                page.wait_for_function("document.querySelectorAll('#canvas circle').length == 40")
+                first_load = time.perf_counter() - t1
+                p = design.patches[0]
+                page.mouse.click(*to_px(page, view, *p.centre_mm))
+                page.wait_for_selector("#slider-fill .v-slider-thumb")
+                thumb = page.locator("#slider-fill .v-slider-thumb")
+                thumb.focus()
+                slider, readout, server = [], [], []
+                for k in range(runs):
+                    before = _stamp(page, "#scene-stamp")
+                    t = time.perf_counter()
+                    page.keyboard.press("ArrowLeft" if k % 2 else "ArrowRight")
+                    _wait_stamp(page, "#readout-stamp", before)
+                    readout.append(time.perf_counter() - t)
+                    _wait_stamp(page, "#scene-stamp", before)
+                    slider.append(time.perf_counter() - t)
+                    server.append(json.loads(page.locator("#timings").inner_text()))
+                move = []
+                x, y = p.centre_mm
+                for k in range(runs):
+                    dx = 4.0 if k % 2 == 0 else -4.0
+                    before = _stamp(page, "#edits")
+                    page.mouse.move(*to_px(page, view, x, y))
+                    page.mouse.down()
+                    page.mouse.move(*to_px(page, view, x + dx, y), steps=2)
+                    t = time.perf_counter()
+                    page.mouse.up()
+                    _wait_stamp(page, "#edits", before)
+                    move.append(time.perf_counter() - t)
+                    x += dx
+    phases = {f"  server {k[:-2]}": [row[k] / 1000.0 for row in server] for k in server[0]}
+    return {"server_start": [server_start], "first_load": [first_load], "slider_readout": readout,
+            "slider": slider, **phases, "move": move}
+
+
+def summary(samples: dict) -> list[dict]:
+    rows = []
+    for name, xs in samples.items():
+        xs = np.asarray(xs)
+        target = TARGETS.get(name)
+        stat = float(np.percentile(xs, 95)) if len(xs) > 1 else float(xs[0])
+        rows.append({"step": name, "runs": int(xs.size), "median_s": float(np.median(xs)),
+                     "p95_s": stat, "target_s": target,
+                     "meets": None if target is None else bool(stat <= target)})
+    return rows
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=30)
+    ap.add_argument("--json", action="store_true")
+    args = ap.parse_args(argv)
+    rows = summary(measure(args.runs))
+    load = os.getloadavg()[0]
+    if args.json:
+        print(json.dumps({"rows": rows, "loadavg_1min": load}, indent=2))
+        return 0
+    print(f"{'step':<18}{'runs':>5}{'median ms':>11}{'p95 ms':>9}{'target ms':>11}  meets")
+    for r in rows:
+        tgt = "" if r["target_s"] is None else f"{1000 * r['target_s']:.0f}"
+        print(f"{r['step']:<18}{r['runs']:>5}{1000 * r['median_s']:>11.0f}{1000 * r['p95_s']:>9.0f}"
+              f"{tgt:>11}  {'' if r['meets'] is None else ('yes' if r['meets'] else 'NO')}")
+    print(f"load average (1 min): {load:.2f}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

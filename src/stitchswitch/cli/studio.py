@@ -1,0 +1,76 @@
+"""``stitchswitch studio``: the interactive design tool in the browser (``stitchswitch.studio``)."""
+from __future__ import annotations
+
+import logging
+import os
+
+import click
+
+from stitchswitch.cli import options
+from stitchswitch.errors import InvalidInputError
+
+log = logging.getLogger("stitchswitch")
+
+
+def _source(source, rectangle, output):
+    """(Document, Design) to edit: a design file, or a new design from a pattern or rectangle
+    saved to ``output``."""
+    from stitchswitch.cli.design.import_cmd import _rectangle
+    from stitchswitch.layout.garment.design import VERSION, Design
+    from stitchswitch.layout.garment.piece_select import rectangle_piece, select_pieces
+    from stitchswitch.studio.persist import Document
+
+    if (source is None) == (rectangle is None):
+        raise InvalidInputError("give either a DESIGN.json or PATTERN.dxf, or --rectangle WxH (not both)")
+    if source is not None and not source.lower().endswith(".dxf"):
+        if output is not None and os.path.abspath(output) != os.path.abspath(source):
+            raise InvalidInputError(f"--output {output!r}: a design file is saved to itself ({source!r})")
+        return Document.open(source)
+    if output is None:
+        raise InvalidInputError("--output DESIGN.json is needed to save a design started from "
+                                + (f"the pattern {source!r}" if source else "--rectangle"))
+    if os.path.exists(output):
+        raise InvalidInputError(f"--output {output!r} exists; open it as DESIGN.json instead")
+    if rectangle is not None:
+        pieces = (rectangle_piece(*_rectangle(rectangle)),)
+    else:
+        from stitchswitch.layout.garment.dxf.reader import import_dxf
+
+        pieces = select_pieces(import_dxf(source))
+    design = Design(VERSION, pieces, (), path=output)
+    return Document(output, design), design
+
+
+@click.command(cls=options.Command)
+@click.argument("source", required=False, type=click.Path(dir_okay=False, exists=True))
+@click.option("--rectangle", default=None, metavar="WxH", help="Start from one rectangular piece, WIDTHxHEIGHT mm.")
+@click.option("-o", "--output", default=None, type=options.OutputFile((".json",), as_str=True),
+              help="Where a design started from a pattern or --rectangle is saved.")
+@click.option("--port", default=8765, show_default=True, type=click.IntRange(1, 65535))
+@click.option("--host", default="127.0.0.1", show_default=True,
+              help="Address to bind (anything but 127.0.0.1 exposes the studio to the network).")
+@click.option("--no-browser", is_flag=True, help="Do not open a browser.")
+@click.option("--recover", is_flag=True, help="Open the autosaved edits of DESIGN.json instead of the file.")
+def studio(source, rectangle, output, port, host, no_browser, recover):
+    """Edit a design in the browser: place and tune patches with a live readout and 3D view,
+    inverse design, the constraint check, hoop grouping and export. Ctrl-C stops it."""
+    try:
+        from stitchswitch.studio.app import serve
+    except ImportError as exc:
+        raise InvalidInputError(f"the studio needs its extra: pip install 'stitchswitch[studio]' ({exc})") from None
+    from stitchswitch.reduced.design_space.cache import default_map
+    from stitchswitch.studio.scene3d import Scene3D
+    from stitchswitch.studio.session import Session
+
+    document, design = _source(source, rectangle, output)
+    recovered = document.recover()
+    if recovered is not None and recover:
+        design = recovered
+    elif recovered is not None:
+        log.warning(f"{document.path}: autosaved edits exist; --recover opens them")
+    if host != "127.0.0.1":
+        log.warning(f"--host {host}: the studio is reachable from the network")
+    session = Session(document, design, default_map(), Scene3D())
+    click.echo(f"stitchswitch studio: http://{host}:{port}/ (Ctrl-C stops it)")
+    serve(session, port=port, host=host, open_browser=not no_browser)
+    click.echo("stitchswitch studio: stopped")

@@ -1,0 +1,23 @@
+"""The studio: the interactive design tool in the browser (paper, section 5: live preview,
+inverse design, constraint panel, Fabrication Mode with hoop grouping and export).
+
+The app state and its actions are plain Python, usable and tested without a browser; the web
+page (``app``, trame) only binds widgets to them.
+
+* ``state``: ``StudioState``, the design under edit, the selection, add / move / edit / remove a
+  patch, undo / redo.
+* ``readout``: ``readout(dmap, d, fill)``, the live keypoints, profile and force of a design
+  from the design-space map; ``heights_mm`` of every patch.
+* ``live_check``: ``run_check``, the library constraint check as panel rows.
+* ``inverse_panel``: ``candidates(target, dmap, state)`` and ``apply``.
+* ``persist``: ``Document``, saving (byte-identical when unchanged) and the autosave sidecar.
+* ``fabrication``: ``hoopings`` (grouping and order) and ``export`` (``fabricate``).
+* ``profile_plot``: ``profile_svg``, the selected patch's profile for the inspector.
+* ``canvas``: the 2D canvas as SVG markup, and the mapping of a click back to garment mm.
+* ``scene3d``: the 3D view's pyvista meshes, built by ``preview3d.scene.build_scene``.
+* ``session``: ``Session``, everything the page shows, recomputed after each action.
+* ``app``: the trame page and ``serve(session, port, host, open_browser)``.
+
+trame, trame-vuetify and trame-vtk are the optional extra ``stitchswitch[studio]``; only
+``app`` imports them.
+"""

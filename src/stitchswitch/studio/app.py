@@ -1,0 +1,289 @@
+"""The studio's web page (trame, Vue 3 with Vuetify 3, VTK local view): binds the widgets to a
+``Session`` and serves it.
+
+Design Mode: the canvas (SVG from ``canvas``; a press on a patch selects it, releasing
+elsewhere moves it, a click on an empty spot of a piece adds a patch, Delete removes the
+selected patch), the inspector
+(diameter and fill sliders, state, the live readout), the 3D view (WebGL in the browser, the
+scene of ``scene3d``), the inverse-design panel and the constraint panel. Fabrication Mode:
+hoop grouping drawn on the canvas, and export of the fabrication folder.
+"""
+from __future__ import annotations
+
+import asyncio
+import os
+import time
+
+from stitchswitch.errors import InvalidInputError, StitchSwitchError
+from stitchswitch.reduced.design_space.inverse import InverseTarget
+from stitchswitch.studio import canvas, live_check
+from stitchswitch.studio.profile_plot import profile_svg
+
+#: the pointer expression passed to the canvas handlers: position on the SVG and its size, px
+POINTER = ("[$event.clientX - $event.currentTarget.getBoundingClientRect().left, "
+           "$event.clientY - $event.currentTarget.getBoundingClientRect().top, "
+           "$event.currentTarget.clientWidth, $event.currentTarget.clientHeight]")
+READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_b_mm"),
+                ("z_b", "z_b_mm"))
+
+
+def _plotter(scene3d):
+    import pyvista as pv
+    from vtkmodules.vtkCommonCore import vtkLogger
+
+    pv.OFF_SCREEN = True
+    if not os.environ.get("DISPLAY"):     # VTK falls back to offscreen; its X warning is noise
+        vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_ERROR)
+    pl = pv.Plotter(off_screen=True, window_size=(600, 450))
+    pl.set_background("white")
+    pl.add_mesh(scene3d.surface, scalars="height (mm)", cmap="coolwarm", clim=scene3d.clim,
+                show_scalar_bar=False, name="surface")
+    pl.add_mesh(scene3d.lines, color="black", line_width=1.5, name="lines")
+    pl.view_isometric()
+    pl.reset_camera()
+    return pl
+
+
+def build_app(session, server=None):
+    """The trame server with the studio page for ``session``."""
+    from trame.app import get_server
+    from trame.ui.vuetify3 import SinglePageWithDrawerLayout
+    from trame.widgets import html
+    from trame.widgets import vtk as vtk_widgets
+    from trame.widgets import vuetify3 as v3
+
+    server = server or get_server("stitchswitch-studio", client_type="vue3")
+    state, ctrl = server.state, server.controller
+    pl = _plotter(session.scene3d)
+    drag = {"id": None, "start": None}
+    pending = {"refresh": None}
+
+    def push_readout() -> None:
+        r = session.selected_readout()
+        state.profile_svg = "" if r is None else profile_svg(r.r_mm, r.z_mm)
+        state.readout = ({} if r is None else
+                         {k: (None if r.keypoints_mm[key] is None else round(r.keypoints_mm[key], 2))
+                          for k, key in READOUT_KEYS}
+                         | {"force": None if r.force_N is None else round(r.force_N, 3),
+                            "message": r.message})
+
+    def push() -> None:
+        s = session.state
+        p = s.selected_patch()
+        with state:
+            push_readout()
+            state.selected = s.selected
+            if p is not None:
+                state.diameter, state.fill, state.patch_state = p.diameter_mm, p.fill, p.state
+            state.canvas_svg = session.canvas_svg()
+            state.violations = live_check.rows(session.violations)
+            state.n_errors = live_check.errors(session.violations)
+            state.can_undo, state.can_redo = s.can_undo, s.can_redo
+            state.dirty = session.document.dirty(s.design)
+            state.n_patches = len(s.design.patches)
+            state.edits = s.changed
+        pl.mapper.scalar_range = session.scene3d.clim
+        t0 = time.perf_counter()
+        ctrl.view_update()
+        # sent after the view's geometry: when the page shows it, the 3D data has arrived
+        state.timings = {k: round(1000 * v, 1) for k, v in session.timings_s.items()} | {
+            "view_send_s": round(1000 * (time.perf_counter() - t0), 1)}
+        state.scene_stamp = s.changed
+        state.flush()
+
+    def guarded(fn):
+        def run(*args, **kwargs):
+            try:
+                fn(*args, **kwargs)
+                state.message = ""
+            except (InvalidInputError, StitchSwitchError, OSError) as exc:
+                state.message = f"Error: {exc}"
+            push()
+        return run
+
+    @guarded
+    def on_down(px, py, w, h):
+        pt = canvas.to_mm(session.view(), px, py, w, h)
+        drag["id"], drag["start"] = session.state.patch_at(pt), pt
+        if drag["id"] is not None and drag["id"] != session.state.selected:
+            session.state.select(drag["id"])
+
+    @guarded
+    def on_up(px, py, w, h):
+        pt = canvas.to_mm(session.view(), px, py, w, h)
+        pid, start = drag["id"], drag["start"]
+        drag["id"] = drag["start"] = None
+        if start is None:
+            return
+        moved = abs(pt[0] - start[0]) + abs(pt[1] - start[1]) > 1.0
+        if pid is not None and moved:
+            p = session.state.design.patch(pid)
+            session.move(pid, (p.centre_mm[0] + pt[0] - start[0], p.centre_mm[1] + pt[1] - start[1]))
+        elif pid is None and not moved:
+            session.add(pt)
+
+    @state.change("diameter", "fill", "patch_state")
+    def on_slider(diameter, fill, patch_state, **_):
+        p = session.state.selected_patch()
+        if p is None or (p.diameter_mm, p.fill, p.state) == (float(diameter), float(fill), patch_state):
+            return
+        try:            # the readout first (the map answers at once), then the check and 3D view
+            session.edit(p.id, refresh=False, diameter_mm=float(diameter), fill=float(fill),
+                         state=patch_state)
+            push_readout()
+            state.readout_stamp = session.state.changed
+            state.flush()
+        except (InvalidInputError, StitchSwitchError, OSError) as exc:
+            state.message = f"Error: {exc}"
+        # the check and the 3D view after the readout has gone out; slider steps that arrive
+        # meanwhile join the pending refresh, which picks up the latest design
+        if pending["refresh"] is None:
+            pending["refresh"] = asyncio.get_event_loop().call_later(0.001, refresh_later)
+
+    def refresh_later():
+        pending["refresh"] = None
+        session.refresh()
+        push()
+
+    def on_inverse():
+        try:
+            r_a = float(state.target_ra) if state.target_ra not in (None, "") else None
+            d_max = float(state.target_dmax) if state.target_dmax not in (None, "") else None
+            p_min = float(state.target_pmin) if state.target_pmin not in (None, "") else None
+            target = InverseTarget(height_mm=float(state.target_h), radius_mm=r_a,
+                                   max_diameter_mm=d_max, min_fill=p_min, count=3)
+            state.candidates = [c.as_dict() | {"index": k}
+                                for k, c in enumerate(session.run_inverse(target))]
+            state.message = "" if state.candidates else "no candidate meets the target"
+        except (InvalidInputError, ValueError) as exc:
+            state.candidates, state.message = [], f"Error: {exc}"
+
+    def on_group():
+        guarded(session.group)(state.fab_mode)
+        if session.order is not None:
+            state.hoopings = [{"k": k, "hoop": h.hoop.name, "patches": ", ".join(h.patch_ids)}
+                              for k, h in enumerate(session.order.hoopings, start=1)]
+
+    def on_export():
+        try:
+            result = session.export(os.path.expanduser(state.export_dir), state.fab_mode)
+            state.exported = list(result.files)
+            state.message = f"exported {len(result.files)} files to {result.outdir}"
+        except (InvalidInputError, StitchSwitchError, OSError) as exc:
+            state.message = f"Error: {exc}"
+
+    def on_save():
+        guarded(session.save)()
+        if not state.message:
+            state.message = f"saved {session.document.path}"
+
+    def on_apply(index):
+        guarded(session.apply_candidate)(int(index))
+
+    def on_key(key):
+        if key in ("Delete", "Backspace") and session.state.selected is not None:
+            on_delete()
+
+    def on_delete():
+        guarded(session.remove)(session.state.selected)
+
+    def on_violation(index):
+        v = session.violations[index]
+        if v.patches:
+            guarded(session.state.select)(v.patches[0])
+
+    state.update({"message": "", "candidates": [], "hoopings": [], "exported": [], "mode": "design",
+                  "fab_mode": "garment", "export_dir": os.path.join(
+                      os.path.dirname(os.path.abspath(session.document.path)), "fabrication"),
+                  "target_h": 15.0, "target_ra": "", "target_dmax": "", "target_pmin": "",
+                  "diameter": 60.0, "fill": 0.5, "patch_state": "up", "readout_stamp": 0,
+                  "timings": {}})
+
+    with SinglePageWithDrawerLayout(server, full_height=True) as layout:
+        layout.title.set_text("stitchswitch studio")
+        with layout.toolbar:
+            v3.VSpacer()
+            with v3.VBtnToggle(v_model=("mode",), mandatory=True, density="compact"):
+                v3.VBtn("Design", value="design", id="mode-design")
+                v3.VBtn("Fabrication", value="fabrication", id="mode-fabrication")
+            v3.VBtn("Undo", click=guarded(session.undo), disabled=("!can_undo",), id="undo")
+            v3.VBtn("Redo", click=guarded(session.redo), disabled=("!can_redo",), id="redo")
+            v3.VBtn("Save", click=on_save, id="save")
+            html.Span("{{ dirty ? 'unsaved changes' : 'saved' }}", classes="text-caption mx-2",
+                      id="dirty")
+            html.Span("{{ edits }}", id="edits", style="display:none")
+            html.Span("{{ scene_stamp }}", id="scene-stamp", style="display:none")
+            html.Span("{{ readout_stamp }}", id="readout-stamp", style="display:none")
+            html.Span("{{ JSON.stringify(timings) }}", id="timings", style="display:none")
+        with layout.drawer as drawer:
+            drawer.width = 380
+            with html.Div(v_if="mode == 'design'", classes="pa-2"):
+                html.H4("Patch {{ selected || '(none: click a piece to add one)' }}", id="inspector-title")
+                with html.Div(v_if="selected"):
+                    with html.Div(id="slider-d"):
+                        v3.VSlider(v_model=("diameter",), label="d (mm)", min=20, max=150, step=0.5,
+                                   thumb_label=True, hide_details=True)
+                    with html.Div(id="slider-fill"):
+                        v3.VSlider(v_model=("fill",), label="fill", min=0.05, max=1.0, step=0.005,
+                                   thumb_label=True, hide_details=True)
+                    v3.VSelect(v_model=("patch_state",), items=("['up', 'down']",), label="state",
+                               density="compact", hide_details=True)
+                    html.Div("h {{ readout.h }} mm | r_a {{ readout.r_a }} | z_a {{ readout.z_a }} | "
+                             "r_b {{ readout.r_b }} | z_b {{ readout.z_b }} mm | force "
+                             "{{ readout.force }} N {{ readout.message }}", id="readout",
+                             classes="text-body-2 my-1")
+                    html.Div(v_html=("profile_svg",), id="profile")
+                    v3.VBtn("Delete patch", click=on_delete,
+                            size="small", id="delete")
+                v3.VDivider(classes="my-2")
+                html.H4("Inverse design")
+                with html.Div(id="target-h"):
+                    v3.VTextField(v_model=("target_h",), label="target h (mm)", density="compact",
+                                  hide_details=True)
+                v3.VTextField(v_model=("target_ra",), label="target r_a (mm, optional)",
+                              density="compact", hide_details=True)
+                v3.VTextField(v_model=("target_dmax",), label="max d (mm, optional)",
+                              density="compact", hide_details=True)
+                v3.VTextField(v_model=("target_pmin",), label="min fill (optional)",
+                              density="compact", hide_details=True)
+                v3.VBtn("Run inverse design", click=on_inverse, size="small", id="run-inverse")
+                with html.Div(v_for="c in candidates", key="c.index", classes="text-body-2"):
+                    html.Span("d {{ c.d_mm }} mm, fill {{ c.fill }}: h {{ c.h_mm }}, r_a {{ c.r_a_mm }},"
+                              " F {{ c.force_N }} N, {{ c.feasible ? 'passes the check' : "
+                              "c.check_errors + ' check errors' }} ")
+                    v3.VBtn("Apply", size="x-small", click=(on_apply, "[c.index]"),
+                        classes="apply-candidate")
+                v3.VDivider(classes="my-2")
+                html.H4("Constraints: {{ n_errors }} error(s)", id="check-title")
+                with html.Div(v_for="v in violations", key="v.index", classes="text-body-2 violation",
+                              click=(on_violation, "[v.index]"), style="cursor:pointer"):
+                    html.Span("{{ v.severity }} {{ v.rule }}: {{ v.message }}")
+            with html.Div(v_if="mode == 'fabrication'", classes="pa-2"):
+                v3.VSelect(v_model=("fab_mode",), items=("['garment', 'free']",), label="grouping",
+                           density="compact")
+                v3.VBtn("Group into hoopings", click=on_group, size="small", id="group")
+                with html.Div(v_for="h in hoopings", key="h.k", classes="text-body-2 hooping"):
+                    html.Span("{{ h.k }}. {{ h.hoop }}: {{ h.patches }}")
+                with html.Div(id="export-dir"):
+                    v3.VTextField(v_model=("export_dir",), label="export folder", density="compact")
+                v3.VBtn("Export", click=on_export, size="small", id="export")
+                with html.Div(v_for="f in exported", key="f", classes="text-caption exported"):
+                    html.Span("{{ f }}")
+            html.Div("{{ message }}", id="message", classes="text-body-2 pa-2 text-red")
+        with layout.content:
+            with html.Div(style="display:flex; height:100%; width:100%"):
+                html.Div(v_html=("canvas_svg",), id="canvas", style="flex:1; min-width:0; user-select:none",
+                         mousedown=(on_down, POINTER), mouseup=(on_up, POINTER), tabindex="0",
+                         keydown=(on_key, "[$event.key]"))
+                with html.Div(style="flex:1; min-width:0", id="view3d"):
+                    view = vtk_widgets.VtkLocalView(pl.ren_win)
+                    ctrl.view_update = view.update
+                    ctrl.view_reset_camera = view.reset_camera
+    push()
+    return server
+
+
+def serve(session, port: int = 0, host: str = "127.0.0.1", open_browser: bool = True) -> None:
+    """Run the page until Ctrl-C (trame prints the URL)."""
+    server = build_app(session)
+    server.start(port=port, host=host, open_browser=open_browser, show_connection_info=True)

@@ -1,0 +1,109 @@
+"""A studio session: the state, the document and everything the page shows, recomputed after
+each action (the readout of the selected patch, the heights, the check, the 3D scene).
+
+Actions raise ``InvalidInputError`` for a refused edit; the page shows its message and the
+design stays as it was.
+"""
+from __future__ import annotations
+
+import time
+
+from stitchswitch.layout.fabrication.fabricate import FabricateOptions
+from stitchswitch.reduced.design_space.inverse import InverseTarget
+from stitchswitch.studio import canvas, fabrication, inverse_panel, live_check
+from stitchswitch.studio.readout import heights_mm, readout
+from stitchswitch.studio.state import StudioState
+
+
+class Session:
+    def __init__(self, document, design, dmap, scene3d=None):
+        self.document = document
+        self.state = StudioState(design)
+        self.dmap = dmap
+        self.scene3d = scene3d
+        self.violations: list = []
+        self.candidates: list = []
+        self.order = None
+        self.timings_s: dict = {}
+        self.refresh(check=True)
+
+    @property
+    def eta(self) -> float:
+        return float(self.state.design.material_object().eta)
+
+    # --- recomputation ------------------------------------------------------------------
+    def refresh(self, check: bool = True, scene: bool = True) -> None:
+        t0 = time.perf_counter()
+        if check:
+            self.violations = live_check.run_check(self.state.design)
+        t1 = time.perf_counter()
+        if scene and self.scene3d is not None:
+            self.scene3d.update(self.state.design)
+        self.timings_s = {"check_s": t1 - t0, "scene_s": time.perf_counter() - t1}
+
+    def after_edit(self, refresh: bool = True) -> None:
+        self.document.autosave(self.state.design)
+        self.order = None
+        if refresh:
+            self.refresh()
+
+    def selected_readout(self):
+        p = self.state.selected_patch()
+        return None if p is None else readout(self.dmap, p.diameter_mm, p.fill)
+
+    def canvas_svg(self) -> str:
+        hoops = fabrication.hooping_outlines(self.order, self.eta) if self.order is not None else ()
+        return canvas.svg(self.state.design, heights_mm(self.dmap, self.state.design), self.eta,
+                          self.state.selected, live_check.patch_status(self.violations), hoops)
+
+    def view(self):
+        return canvas.view_of(self.state.design)
+
+    # --- actions ------------------------------------------------------------------------
+    def add(self, centre_mm) -> str:
+        pid = self.state.add_patch(centre_mm)
+        self.after_edit()
+        return pid
+
+    def move(self, patch_id, centre_mm) -> None:
+        self.state.move_patch(patch_id, centre_mm)
+        self.after_edit()
+
+    def edit(self, patch_id, refresh: bool = True, **changes) -> None:
+        """Edit a patch; ``refresh`` False leaves the check and the scene to a later
+        ``refresh()`` (the page shows the readout first)."""
+        self.state.edit_patch(patch_id, **changes)
+        self.after_edit(refresh)
+
+    def remove(self, patch_id) -> None:
+        self.state.remove_patch(patch_id)
+        self.after_edit()
+
+    def undo(self) -> None:
+        self.state.undo()
+        self.after_edit()
+
+    def redo(self) -> None:
+        self.state.redo()
+        self.after_edit()
+
+    def run_inverse(self, target: InverseTarget) -> list:
+        self.candidates = inverse_panel.candidates(target, self.dmap, self.state)
+        return self.candidates
+
+    def apply_candidate(self, index: int) -> str:
+        pid = inverse_panel.apply(self.state, self.candidates[index].candidate)
+        self.after_edit()
+        return pid
+
+    def save(self) -> str:
+        self.document.save(self.state.design)
+        return self.document.path
+
+    def group(self, mode: str = "garment") -> None:
+        _, self.order = fabrication.hoopings(self.state.design, FabricateOptions(mode=mode))
+
+    def export(self, outdir, mode: str = "garment", force: bool = False):
+        saved = not self.document.dirty(self.state.design)
+        return fabrication.export(self.state.design, outdir, FabricateOptions(mode=mode, force=force),
+                                  saved)

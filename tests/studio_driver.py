@@ -1,0 +1,100 @@
+"""Drive ``stitchswitch studio`` in Debian's chromium through Playwright (the end-to-end test
+and benchmarks/bench_studio.py): start the server on a free port, open a fresh headless
+browser on it, and map garment mm to pixels on the canvas. Nothing is downloaded: the browser
+is the system's /usr/bin/chromium."""
+from __future__ import annotations
+
+import contextlib
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+
+CHROMIUM = "/usr/bin/chromium"
+ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+        "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@contextlib.contextmanager
+def studio_server(design_path, timeout_s: float = 60.0):
+    """The URL of a running ``stitchswitch studio DESIGN --no-browser``; stopped with SIGINT
+    (Ctrl-C) at the end, which must end it cleanly."""
+    port = free_port()
+    env = dict(os.environ)
+    src = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "src")
+    env["PYTHONPATH"] = src + os.pathsep + env.get("PYTHONPATH", "")
+    proc = subprocess.Popen([sys.executable, "-m", "stitchswitch", "studio", os.fspath(design_path),
+                             "--no-browser", "--port", str(port)], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    url = f"http://127.0.0.1:{port}/"
+    deadline = time.monotonic() + timeout_s
+    lines = []
+    try:
+        while time.monotonic() < deadline:
+            line = proc.stdout.readline()
+            if not line and proc.poll() is not None:
+                raise RuntimeError("the studio stopped:\n" + "".join(lines))
+            lines.append(line)
+            if "App running at" in line:
+                break
+        else:
+            raise RuntimeError("the studio did not start:\n" + "".join(lines))
+        yield url, lines
+    finally:
+        import signal
+
+        proc.send_signal(signal.SIGINT)
+        try:
+            rest, _ = proc.communicate(timeout=20)
+            lines.append(rest or "")
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.communicate()
+            raise
+        lines.append(f"exit code {proc.returncode}\n")
+
+
+@contextlib.contextmanager
+def browser_page(url, size=(1400, 850)):
+    from playwright.sync_api import sync_playwright
+
+    profile = tempfile.mkdtemp(prefix="studio-chromium-")
+    try:
+        with sync_playwright() as p:
+            ctx = p.chromium.launch_persistent_context(profile, executable_path=CHROMIUM, args=ARGS,
+                                                       headless=True,
+                                                       viewport={"width": size[0], "height": size[1]})
+            try:
+                page = ctx.new_page()
+                page.goto(url)
+                page.wait_for_selector("#canvas svg circle, #canvas svg polygon", timeout=30000)
+                yield page
+            finally:
+                ctx.close()
+    finally:
+        shutil.rmtree(profile, ignore_errors=True)
+
+
+def to_px(page, view, x_mm: float, y_mm: float) -> tuple[float, float]:
+    """Page pixels of garment point (x_mm, y_mm) on the canvas (inverse of ``canvas.to_mm``)."""
+    box = page.locator("#canvas").bounding_box()
+    scale = min(box["width"] / view.width, box["height"] / view.height)
+    ox = (box["width"] - view.width * scale) / 2.0
+    oy = (box["height"] - view.height * scale) / 2.0
+    return (box["x"] + ox + (x_mm - view.x0) * scale, box["y"] + oy + (-y_mm - view.y0) * scale)
+
+
+def drag(page, start, end, steps: int = 5) -> None:
+    page.mouse.move(*start)
+    page.mouse.down()
+    page.mouse.move(*end, steps=steps)
+    page.mouse.up()

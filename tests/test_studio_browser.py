@@ -1,0 +1,133 @@
+"""End to end in a real browser (Debian's chromium through Playwright): the studio on the tennis-
+pocket demo design; add a patch by clicking on the piece, delete it with the Delete key and
+undo, drag it, move the fill slider and see the readout and the 3D view change, run inverse
+design and apply a candidate, drag a patch over the piece edge and see the violation appear and
+clear, save and check the saved file with ``stitchswitch check``, then group into hoopings and
+export a JEF that the tests' own decoder reads back with the expected extent. With
+STUDIO_SCREENSHOTS=DIR the screenshots of docs/studio.md are written to DIR."""
+import json
+import os
+import re
+import shutil
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from stitchswitch.cli.main import cli
+from stitchswitch.layout.garment.design_io import load_design, save_design
+
+from decoders import jef
+
+pytest.importorskip("playwright")
+pytest.importorskip("trame")
+pytest.importorskip("trame_vtk")
+from stitchswitch.studio.canvas import view_of  # noqa: E402
+from studio_driver import CHROMIUM, browser_page, drag, studio_server, to_px  # noqa: E402
+
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(not os.path.exists(CHROMIUM), reason=f"{CHROMIUM} is not installed "
+                                 "(.ci/run installs it with apt-get)")]
+
+
+def shot(page, tmp_path, name):
+    path = tmp_path / f"studio-{name}.png"
+    page.screenshot(path=str(path))
+    out = os.environ.get("STUDIO_SCREENSHOTS")
+    if out:
+        os.makedirs(out, exist_ok=True)
+        shutil.copy(path, os.path.join(out, path.name))
+
+
+def readout_h(page) -> float:
+    return float(re.match(r"h (-?[\d.]+) mm", page.locator("#readout").inner_text()).group(1))
+
+
+def errors(page) -> int:
+    return int(re.search(r"Constraints: (\d+) error", page.locator("#check-title").inner_text()).group(1))
+
+
+def test_studio_in_chromium(tmp_path):
+    from stitchswitch.demos.tennis_pocket import build
+
+    design = build().design
+    path = tmp_path / "tennis-pocket.json"
+    save_design(design, path)
+    view = view_of(design)
+    with studio_server(path) as (url, log):
+        with browser_page(url) as page:
+            circles = page.locator("#canvas circle")
+            assert circles.count() == 1
+            shot(page, tmp_path, "open")
+            # add a patch by clicking on an empty spot of the piece: it becomes the selection
+            page.mouse.click(*to_px(page, view, 60.0, 150.0))
+            page.wait_for_function("document.querySelectorAll('#canvas circle').length == 2")
+            assert page.locator("#inspector-title").inner_text() == "Patch p1"
+            # Delete removes it, undo brings it back
+            page.keyboard.press("Delete")
+            page.wait_for_function("document.querySelectorAll('#canvas circle').length == 1")
+            page.locator("#undo").click()
+            page.wait_for_function("document.querySelectorAll('#canvas circle').length == 2")
+            # drag it 40 mm to the right
+            drag(page, to_px(page, view, 60.0, 150.0), to_px(page, view, 100.0, 150.0))
+            page.wait_for_function("Number(document.querySelector('#canvas circle[data-patch=p1]')"
+                                   ".getAttribute('cx')) > 90")
+            # the fill slider: the readout and the 3D view change
+            h0 = readout_h(page)
+            before = page.locator("#view3d").screenshot()
+            thumb = page.locator("#slider-fill .v-slider-thumb")
+            thumb.focus()
+            for _ in range(30):
+                page.keyboard.press("ArrowRight")
+            page.wait_for_function(f"!document.querySelector('#readout').innerText.startsWith('h {h0} ')")
+            page.wait_for_timeout(500)
+            assert readout_h(page) != h0
+            assert page.locator("#view3d").screenshot() != before
+            assert page.locator("#profile polyline").count() == 1        # the profile plot
+            shot(page, tmp_path, "design")
+            # inverse design for h = 12 mm, applied to the selected patch
+            page.locator("#target-h input").fill("12")
+            page.locator("#run-inverse").click()
+            page.locator(".apply-candidate").first.wait_for(timeout=60000)
+            shot(page, tmp_path, "inverse")
+            h1 = readout_h(page)
+            page.locator(".apply-candidate").first.click()
+            page.wait_for_function(f"!document.querySelector('#readout').innerText.startsWith('h {h1} ')")
+            assert readout_h(page) == pytest.approx(12.0, abs=0.25), page.locator("#message").inner_text()
+            assert errors(page) == 0
+            # over the piece edge (the waist): a violation, then undo clears it
+            top = float(design.pieces[0].outline_mm[:, 1].max())
+            drag(page, to_px(page, view, 100.0, 150.0), to_px(page, view, 100.0, top - 5.0))
+            page.wait_for_function("/Constraints: [1-9]/.test(document.querySelector('#check-title').innerText)")
+            assert page.locator(".violation").count() >= 1
+            shot(page, tmp_path, "violation")
+            page.locator("#undo").click()
+            page.wait_for_function("/Constraints: 0 /.test(document.querySelector('#check-title').innerText)")
+            # save, and the CLI's check accepts the saved file
+            page.locator("#save").click()
+            page.wait_for_function("document.querySelector('#dirty').innerText == 'saved'")
+            saved = load_design(path)
+            assert [p.id for p in saved.patches] == ["pocket1", "p1"]
+            assert saved.patch("p1").centre_mm[0] == pytest.approx(100.0, abs=3.0)
+            r = CliRunner().invoke(cli, ["check", str(path)])
+            assert r.exit_code == 0, r.output
+            # Fabrication Mode: group and export; the JEF read back by the independent decoder
+            page.locator("#mode-fabrication").click()
+            page.locator("#group").click()
+            page.locator(".hooping").first.wait_for(timeout=60000)
+            out = tmp_path / "fabrication"
+            page.locator("#export-dir input").fill(str(out))
+            page.locator("#export").click()
+            page.locator(".exported").first.wait_for(timeout=120000)
+            shot(page, tmp_path, "fabrication")
+    assert log[-1] == "exit code 0\n"            # Ctrl-C (SIGINT) stopped it cleanly
+    sheet = json.loads((out / "fabrication.json").read_text())
+    assert sorted(p["id"] for h in sheet["hoopings"] for p in h["patches"]) == ["p1", "pocket1"]
+    for h in sheet["hoopings"]:
+        # the stitches span the hooping's patches: centres in hoop mm +- d / 2 (0.1 mm units)
+        xy = np.array([(x, y) for kind, x, y in jef.decode((out / h["files"]["embroidery"]).read_bytes()).records
+                       if kind == "stitch"]) / 10.0
+        pos = np.array([p["position_hoop_mm"] for p in h["patches"]])
+        rad = np.array([p["diameter_mm"] / 2 for p in h["patches"]])[:, None]
+        expected = (pos + rad).max(axis=0) - (pos - rad).min(axis=0)
+        assert np.ptp(xy, axis=0) == pytest.approx(expected, abs=1.5)

@@ -1,0 +1,182 @@
+"""The studio's state and actions in-process, without a browser: add, move, edit, remove,
+undo / redo, the live readout, the check, inverse apply, save (byte-identical when unchanged),
+autosave, grouping and export."""
+import json
+import os
+import re
+
+import numpy as np
+import pytest
+
+from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.check.constraints import check_design
+from stitchswitch.layout.garment.design import Design, MachineSpec, MaterialRef
+from stitchswitch.layout.garment.design_io import load_design, save_design
+from stitchswitch.layout.garment.piece_select import rectangle_piece
+from stitchswitch.reduced.design_space.cache import default_map
+from stitchswitch.reduced.design_space.inverse import InverseTarget
+from stitchswitch.studio import fabrication, inverse_panel, live_check
+from stitchswitch.studio.persist import Document, sidecar_path
+from stitchswitch.studio.profile_plot import profile_svg
+from stitchswitch.studio.readout import heights_mm, readout
+from stitchswitch.studio.state import StudioState
+
+from decoders import jef
+
+
+@pytest.fixture
+def empty():
+    return Design(1, (rectangle_piece(400.0, 300.0, "panel"),), (), MaterialRef("default"), MachineSpec())
+
+
+@pytest.fixture
+def design_file(tmp_path, empty):
+    path = tmp_path / "d.json"
+    save_design(empty, path)
+    return path
+
+
+def centre(design):
+    o = design.pieces[0].outline_mm
+    return tuple(o.mean(axis=0))
+
+
+def test_add_move_edit_remove_undo_redo(empty):
+    s = StudioState(empty)
+    c = centre(empty)
+    pid = s.add_patch(c)
+    assert s.selected == pid and [p.id for p in s.design.patches] == [pid]
+    assert s.design.patch(pid).piece == "panel"
+    s.move_patch(pid, (c[0] + 20, c[1]))
+    assert s.design.patch(pid).centre_mm == (c[0] + 20, c[1])
+    for f in (0.6, 0.65, 0.7):                       # a dragged slider: one undo step
+        s.edit_patch(pid, fill=f)
+    assert s.design.patch(pid).fill == 0.7
+    s.undo()
+    assert s.design.patch(pid).fill == 0.5 and s.design.patch(pid).centre_mm == (c[0] + 20, c[1])
+    s.redo()
+    assert s.design.patch(pid).fill == 0.7
+    s.remove_patch(pid)
+    assert s.design.patches == () and s.selected is None
+    for _ in range(4):
+        s.undo()
+    assert s.design == empty and not s.can_undo
+    s.redo()
+    assert len(s.design.patches) == 1
+
+
+def test_bad_actions_are_clear_errors(empty):
+    s = StudioState(empty)
+    with pytest.raises(InvalidInputError, match="not on a piece"):
+        s.add_patch((5000.0, 5000.0))
+    pid = s.add_patch(centre(empty))
+    with pytest.raises(InvalidInputError, match="fill"):
+        s.edit_patch(pid, fill=1.5)
+    with pytest.raises(InvalidInputError, match="not an editable"):
+        s.edit_patch(pid, id="x")
+    assert s.design.patch(pid).fill == 0.5             # a refused edit changes nothing
+
+
+def test_hit_testing(empty):
+    s = StudioState(empty)
+    c = centre(empty)
+    pid = s.add_patch(c, diameter_mm=60.0)
+    eta = empty.material_object().eta
+    assert s.patch_at((c[0] + 0.9 * 30 / eta, c[1])) == pid
+    assert s.patch_at((c[0] + 1.1 * 30 / eta, c[1])) is None
+
+
+def test_readout_follows_the_map():
+    dmap = default_map()
+    a, b = readout(dmap, 60.0, 0.4), readout(dmap, 60.0, 0.8)
+    q = dmap.query(60.0, 0.8)
+    assert b.in_domain and b.keypoints_mm["h_mm"] == pytest.approx(float(q.h_mm[0]))
+    assert a.keypoints_mm["h_mm"] != b.keypoints_mm["h_mm"]
+    assert b.force_N > 0 and b.r_mm.shape == b.z_mm.shape
+    design = Design(1, (rectangle_piece(400.0, 300.0, "panel"),), (), MaterialRef("default"), MachineSpec())
+    s = StudioState(design)
+    pid = s.add_patch((200.0, 150.0), diameter_mm=60.0, fill=0.8)
+    assert heights_mm(dmap, s.design) == {pid: b.keypoints_mm["h_mm"]}
+    svg = profile_svg(b.r_mm, b.z_mm)
+    pts = np.array([[float(v) for v in p.split(",")]
+                    for p in re.search(r'data-profile="1" points="([^"]+)"', svg).group(1).split()])
+    assert -pts[:, 1].min() == pytest.approx(float(b.z_mm.max()), abs=0.01)     # the apex
+    assert pts[:, 0].max() == pytest.approx(float(b.r_mm.max()), abs=0.01)
+    assert profile_svg(None, None) == ""
+    out = readout(dmap, 1000.0, 0.5)
+    assert not out.in_domain and "outside the map's domain" in out.message
+
+
+def test_check_is_the_library_check(empty):
+    s = StudioState(empty)
+    pid = s.add_patch(centre(empty))
+    assert live_check.run_check(s.design) == check_design(s.design)
+    assert live_check.errors(live_check.run_check(s.design)) == 0
+    o = empty.pieces[0].outline_mm
+    s.move_patch(pid, (o[:, 0].min() + 3.0, centre(empty)[1]))      # over the piece edge
+    v = live_check.run_check(s.design)
+    assert live_check.patch_status(v).get(pid) == "error"
+    assert any(r["rule"] == "piece-edge" for r in live_check.rows(v))
+    s.undo()
+    assert live_check.errors(live_check.run_check(s.design)) == 0
+
+
+def test_inverse_apply(empty):
+    s = StudioState(empty)
+    pid = s.add_patch(centre(empty))
+    cands = inverse_panel.candidates(InverseTarget(height_mm=12.0, count=2), default_map(), s)
+    assert cands and all(c.check_errors == 0 for c in cands)
+    inverse_panel.apply(s, cands[0].candidate)
+    p = s.design.patch(pid)
+    assert p.diameter_mm == pytest.approx(cands[0].candidate.diameter_mm, abs=1e-6)
+    assert readout(default_map(), p.diameter_mm, p.fill).keypoints_mm["h_mm"] == pytest.approx(12.0, abs=0.3)
+    s.undo()
+    assert s.design.patch(pid).diameter_mm == 60.0
+
+
+def test_save_unchanged_is_byte_identical(tmp_path, design_file):
+    raw = design_file.read_bytes()
+    noncanonical = json.dumps(json.loads(raw))            # valid, but not the canonical text
+    design_file.write_text(noncanonical)
+    doc, design = Document.open(design_file)
+    s = StudioState(design)
+    pid = s.add_patch(centre(design))
+    s.remove_patch(pid)
+    assert not doc.dirty(s.design)
+    doc.save(s.design)
+    assert design_file.read_text() == noncanonical
+    s.add_patch(centre(design))
+    assert doc.dirty(s.design)
+    doc.save(s.design)
+    assert load_design(design_file) == s.design and design_file.read_bytes() != noncanonical.encode()
+
+
+def test_autosave_sidecar(design_file):
+    doc, design = Document.open(design_file)
+    s = StudioState(design)
+    s.add_patch(centre(design))
+    doc.autosave(s.design)
+    assert os.path.exists(sidecar_path(design_file))
+    again, _ = Document.open(design_file)
+    assert again.recover() == s.design
+    doc.save(s.design)
+    assert not os.path.exists(sidecar_path(design_file)) and again.recover() is None
+
+
+def test_grouping_and_export(tmp_path, design_file):
+    doc, design = Document.open(design_file)
+    s = StudioState(design)
+    c = centre(design)
+    s.add_patch((c[0] - 40, c[1]), diameter_mm=50.0)
+    s.add_patch((c[0] + 40, c[1]), diameter_mm=50.0)
+    grouping, order = fabrication.hoopings(s.design)
+    assert sorted(i for h in order.hoopings for i in h.patch_ids) == sorted(p.id for p in s.design.patches)
+    doc.save(s.design)
+    result = fabrication.export(s.design, tmp_path / "out")
+    jefs = [f for f in result.files if f.endswith(".jef")]
+    assert len(jefs) == len(order.hoopings)
+    for name, h in zip(sorted(jefs), result.order.hoopings):
+        decoded = jef.decode((tmp_path / "out" / name).read_bytes())
+        xy = np.array([(x, y) for kind, x, y in decoded.records if kind == "stitch"]) / 10.0
+        expected = np.ptp(np.array(h.positions_mm), axis=0) + 50.0     # centres' span + d
+        assert np.ptp(xy, axis=0) == pytest.approx(expected, abs=2.0)
