@@ -147,8 +147,27 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
                      f"{'yes' if r['significant'] else 'no':3}  {strength}")
     lines.append("")
     name = rep["missing_effect"]
-    lines.append(f"missing effect: {name}" if name else "missing effect: none found")
+    if rep.get("indistinguishable"):
+        lines.append("missing effect: the data cannot tell apart "
+                     + " / ".join(rep["indistinguishable"]))
+    else:
+        lines.append(f"missing effect: {name}" if name else "missing effect: none found")
     lines.append(f"  {rep['decision']}")
+    if rep.get("unexplained_residual"):
+        lines.append("  an unexplained residual remains: " + ", ".join(rep["unexplained_residual"])
+                     + " (map: residuals_after.png)")
+    noise = rep["noise_floor"]["sigma_mm"]
+    share = rep["systematic"]["share_explained"]
+    lines.append("  noise floor (estimated) sigma: " + ", ".join(
+        f"{q} {noise[q]:.2f}" for q in QUANTITIES) + " mm; share of the systematic residual "
+        "explained: " + ("n/a" if share is None else f"{100 * share:.0f} %"))
+    if rep["proposal"]["designs"]:
+        lines.append("")
+        lines.append("next samples (most discriminating first; template: next_samples.csv "
+                     "in the report):")
+        for row in rep["proposal"]["designs"]:
+            lines.append(f"  d = {row['d_mm']:g} mm, p = {row['fill']:g}: expected chi^2 "
+                         f"{row['discrimination']:.1f} between the leading models")
     lines.append("")
     lines.append(f"{'validation':10s} " + " ".join(f"{q:>7}" for q in QUANTITIES))
     for which in ("before", "after"):
