@@ -348,3 +348,36 @@ def test_smooth_split_estimates_the_noise_and_the_systematic_part():
     assert out["noise_sigma_mm"][1] == pytest.approx(0.5, rel=0.2)
     assert out["systematic_energy_mm2"][0] == pytest.approx(np.mean(trend ** 2), rel=0.2)
     assert out["systematic_energy_mm2"][1] < 0.05
+
+
+def test_winsorize_is_hubers_pseudo_observation_step():
+    from stitchswitch.validation.discovery.robust import robust_scale, winsorize
+
+    rng = np.random.default_rng(9)
+    pred = np.zeros((400, 5))
+    meas = rng.normal(0.0, 1.0, (400, 5))
+    meas[3, 0] = 15.0                                   # an outlier
+    s = robust_scale(meas - pred)
+    assert s[0] == pytest.approx(1.0, rel=0.15)
+    pseudo, w, _ = winsorize(meas, pred, 2.5)
+    assert pseudo[3, 0] == pytest.approx(2.5 * s[0]) and w[3, 0] == pytest.approx(2.5 * s[0] / 15.0)
+    inside = np.abs(meas) <= 2.5 * s
+    assert np.array_equal(pseudo[inside], meas[inside]) and np.all(w[inside] == 1.0)
+
+
+def test_robust_fit_lists_the_outlier_row_and_names_nothing_on_null_data():
+    text = dataset_text(None, (), seed=22, material=TRUE,
+                        sigma_mm=tuple(0.3 * s for s in SIGMA_MM), **TRAIN)
+    lines = text.splitlines()
+    k = next(i for i, line in enumerate(lines) if line.startswith("t03,"))
+    cells = lines[k].split(",")
+    cells[3] = f"{float(cells[3]) + 8.0:.2f}"            # h of t03 off by 8 mm
+    lines[k] = ",".join(cells)
+    data = parse_measurements("\n".join(lines) + "\n", "outlier.csv")
+    config = DiscoveryConfig(effects=("prestretch_loss", "hoop_bending"), folds=3, fit_max_nfev=8,
+                             cv_max_nfev=2, scan_points=3, permutations=300, huber_c=2.5)
+    s = discover(data, START, config).summary
+    assert s["missing_effect"] is None
+    down = s["robust"]["down_weighted"]
+    assert {"sample": "t03", "quantity": "h"} in [{k: d[k] for k in ("sample", "quantity")} for d in down]
+    assert min(d["weight"] for d in down if d["sample"] == "t03") < 0.5

@@ -53,9 +53,12 @@ def _effects(value):
 @click.option("--de-generations", type=click.IntRange(min=0), default=0, show_default=True,
               help="Differential-evolution generations before calibrating the starting model "
                    "(0: least squares from the starting material).")
+@click.option("--huber", type=click.FloatRange(min=0.0, min_open=True), default=None,
+              metavar="C", help="Robust fit: Huber's loss at C robust sigmas (default: least "
+                                "squares); the down-weighted rows are listed.")
 @click.option("--seed", type=int, default=0, show_default=True)
 def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_out, workers,
-             folds, alpha, de_generations, seed):
+             folds, alpha, de_generations, huber, seed):
     """Find where the model and the data disagree, name the missing effect, add it, recalibrate
     and show the gap on the validation rows.
 
@@ -83,7 +86,7 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
     if not demo and len(given) != 1:
         raise options.InputError("give the data as DATA.csv or --data FILE (once), or use --demo")
     config = DiscoveryConfig(effects=_effects(effects), folds=folds, alpha=alpha,
-                             de_generations=de_generations, seed=seed)
+                             de_generations=de_generations, seed=seed, huber_c=huber)
     if report_dir is not None:
         check_discovery_dir(report_dir)
     json_file = None if json_out in (None, "-") else json_out
@@ -156,6 +159,10 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
     if rep.get("unexplained_residual"):
         lines.append("  an unexplained residual remains: " + ", ".join(rep["unexplained_residual"])
                      + " (map: residuals_after.png)")
+    down = rep["robust"]["down_weighted"]
+    if down:
+        lines.append("  down-weighted (Huber): " + ", ".join(
+            f"{d['sample']} {d['quantity']} (w {d['weight']:.2f})" for d in down))
     noise = rep["noise_floor"]["sigma_mm"]
     share = rep["systematic"]["share_explained"]
     lines.append("  noise floor (estimated) sigma: " + ", ".join(

@@ -67,7 +67,7 @@ def report_dict(disc, data, start, start_label: str = "default") -> dict:
         "verdict": s["verdict"], "indistinguishable": s["indistinguishable"],
         "after_model": s["after_model"], "claims": s["claims"],
         "unexplained_residual": s["unexplained_residual"], "noise_floor": s["noise_floor"],
-        "systematic": s["systematic"], "proposal": s["proposal"],
+        "systematic": s["systematic"], "proposal": s["proposal"], "robust": s["robust"],
         "data": {"path": data.path, "source": data.source, "synthetic": data.synthetic,
                  "provenance": provenance_statement(data), "sha256": data.sha256,
                  "n_train": s["n_train"], "n_val": s["n_val"]},
@@ -167,6 +167,11 @@ def _story(rep: dict) -> dict:
                    ", ".join(f"{q} {noise[q]:.2f}" for q in QUANTITIES) + " mm. Share of the "
                    "systematic residual explained: " +
                    ("n/a" if share is None else f"{100 * share:.0f} %") + ".")
+    down = rep["robust"]["down_weighted"]
+    if down:
+        after_text += (f" Robust fit (Huber, c = {rep['robust']['huber_c']:g} robust sigmas); "
+                       "down-weighted: " + ", ".join(f"{d['sample']} {d['quantity']} (weight "
+                                                     f"{d['weight']:.2f})" for d in down) + ".")
     if rep["proposal"]["designs"]:
         after_text += (" Next samples (next_samples.csv, most discriminating first): " +
                        "; ".join(f"d = {r['d_mm']:g} mm, p = {r['fill']:g} (chi^2 "

@@ -44,6 +44,7 @@ from stitchswitch.validation.discovery.effects import LIBRARY, get_effect
 from stitchswitch.validation.discovery.evaluate import Evaluator
 from stitchswitch.validation.discovery.fit import equal_footing, fit, fit_effect, jacobian
 from stitchswitch.validation.discovery.residuals import residual_analysis
+from stitchswitch.validation.discovery.robust import winsorize
 from stitchswitch.validation.discovery.signature import explain, signature
 from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
 from stitchswitch.validation.measured import QUANTITIES, MeasuredData
@@ -64,7 +65,8 @@ class DiscoveryConfig:
     at most ``screen_max_nfev`` steps and cross-validated with one-step fold refits) before the
     ``refine`` best are polished (``polish_max_nfev`` steps) and cross-validated
     (``cv_max_nfev``) at the starting material's own resolution (None: no screening).
-    ``propose``: how many next samples to propose."""
+    ``propose``: how many next samples to propose. ``huber_c``: a robust fit (Huber's loss with
+    threshold ``huber_c`` robust sigmas, ``discovery.robust``); None: least squares."""
 
     effects: tuple | None = None
     folds: int = 5
@@ -81,6 +83,7 @@ class DiscoveryConfig:
     refine: int = 3
     polish_max_nfev: int = 4
     propose: int = 5
+    huber_c: float | None = None
 
     def __post_init__(self) -> None:
         names = tuple(self.effects) if self.effects is not None else tuple(LIBRARY)
@@ -99,6 +102,8 @@ class DiscoveryConfig:
                 raise InvalidInputError(f"{name}: {getattr(self, name)!r} is too small")
         if self.screen_nodes is not None and int(self.screen_nodes) < 20:
             raise InvalidInputError(f"screen_nodes: {self.screen_nodes!r} is below 20")
+        if self.huber_c is not None and not self.huber_c > 0:
+            raise InvalidInputError(f"huber_c: {self.huber_c!r} must be > 0")
         if self.de_generations < 0:
             raise InvalidInputError(f"de_generations: {self.de_generations!r} must be >= 0")
 
@@ -263,6 +268,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     d_tr = [x for x, t in zip(designs, tr) if t]
     d_va = [x for x, t in zip(designs, va) if t]
     m_tr, m_va = measured[tr], measured[va]
+    train_rows = [r for r, t in zip(rows, tr) if t]
     n_res = m_tr.size
     ev = Evaluator(executor)
     base = ModelSpec(start, None, BASE_FREE)
@@ -275,27 +281,32 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     # 1. the starting model, calibrated: searched at the screening resolution, polished
     step("calibrating the starting model")
     fs = _start_fit(screen, ev, d_tr, m_tr, start, config, executor)
-    fb = fit(base, ev, d_tr, m_tr, fs.x, max_nfev=config.polish_max_nfev) if screen != base else fs
+    m_fit, weights = m_tr, np.ones_like(m_tr)
+    if config.huber_c:
+        for _ in range(3):          # alternate clipping and refitting (converges to Huber's fit)
+            m_fit, weights, _scale = winsorize(m_tr, fs.predictions, config.huber_c)
+            fs = fit(screen, ev, d_tr, m_fit, fs.x, max_nfev=config.polish_max_nfev)
+    fb = fit(base, ev, d_tr, m_fit, fs.x, max_nfev=config.polish_max_nfev) if screen != base else fs
 
     # 2-3. screening: every candidate's signature, refit and cross-validation at the screening
     # resolution, from the screened starting model
     step("screening: the starting model's Jacobian and cross-validation")
     J0s = jacobian(screen, ev, d_tr, fs.x, lo, hi)
-    cv0s = cross_validate(screen, ev, d_tr, m_tr, fs.x, labels, max_nfev=1)
-    rss0s = float(np.sum((fs.predictions - m_tr) ** 2))
+    cv0s = cross_validate(screen, ev, d_tr, m_fit, fs.x, labels, max_nfev=1)
+    rss0s = float(np.sum((fs.predictions - m_fit) ** 2))
     before_va_s = ev.one(screen, fs.x, d_va)
     screened, sigs, screened_fit = {}, {}, {}
     for name in config.effects:
         spec = screen.with_effect(name)
         step(f"{name}: signature and refit")
         sig = signature(spec, ev, designs, fs.x)
-        why = explain(J0s, sig[tr], m_tr - fs.predictions, QUANTITIES)
+        why = explain(J0s, sig[tr], m_fit - fs.predictions, QUANTITIES)
         sigs[name] = {"per_unit": sig, "pattern": why.pop("pattern")}
-        f, how = fit_effect(spec, ev, d_tr, m_tr, fs, J0s, sig[tr],
+        f, how = fit_effect(spec, ev, d_tr, m_fit, fs, J0s, sig[tr],
                             max_nfev=config.screen_max_nfev, scan_points=config.scan_points)
         step(f"{name}: cross-validation")
-        cv = cross_validate(spec, ev, d_tr, m_tr, f.x, labels, max_nfev=1)
-        screened[name] = _candidate(name, spec, f, m_tr, cv, cv0s, why, how["start"], rss0s,
+        cv = cross_validate(spec, ev, d_tr, m_fit, f.x, labels, max_nfev=1)
+        screened[name] = _candidate(name, spec, f, m_fit, cv, cv0s, why, how["start"], rss0s,
                                     base.size, m, config, ev, d_va, m_va, before_va_s,
                                     refined=screen == base)
         screened_fit[name] = f
@@ -309,18 +320,18 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     for name in leaders:
         spec = base.with_effect(name)
         if screen != base:
-            f = fit(spec, ev, d_tr, m_tr, screened_fit[name].x, max_nfev=config.polish_max_nfev)
+            f = fit(spec, ev, d_tr, m_fit, screened_fit[name].x, max_nfev=config.polish_max_nfev)
         else:
             f = screened_fit[name]
         refined_fits[name] = f
     def passes(rss0, f):
-        rss1 = float(np.sum((f.predictions - m_tr) ** 2))
+        rss1 = float(np.sum((f.predictions - m_fit) ** 2))
         return f_test(rss0, rss1, n_res, base.size, f.spec.size)[1] < threshold
 
-    base_fit, repolished = equal_footing(base, ev, d_tr, m_tr, fb, refined_fits, passes,
+    base_fit, repolished = equal_footing(base, ev, d_tr, m_fit, fb, refined_fits, passes,
                                          max_nfev=config.fit_max_nfev)
-    rss0 = float(np.sum((base_fit.predictions - m_tr) ** 2))
-    cv0 = cross_validate(base, ev, d_tr, m_tr, base_fit.x, labels, max_nfev=config.cv_max_nfev)
+    rss0 = float(np.sum((base_fit.predictions - m_fit) ** 2))
+    cv0 = cross_validate(base, ev, d_tr, m_fit, base_fit.x, labels, max_nfev=config.cv_max_nfev)
     before = np.empty_like(measured)
     before[tr] = base_fit.predictions
     before[va] = ev.one(base, base_fit.x, d_va)
@@ -330,11 +341,11 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         if f.mse_mm2 > base_fit.mse_mm2:      # the effect cannot beat the starting model
             x0 = f.spec.extend(base_fit.x, (0.0,) * len(f.spec.effect_parameters))
             pred = ev.one(f.spec, x0, d_tr)
-            f = type(f)(f.spec, x0, pred, float(np.mean((pred - m_tr) ** 2)), f.evaluations,
+            f = type(f)(f.spec, x0, pred, float(np.mean((pred - m_fit) ** 2)), f.evaluations,
                         ev.n_uncertified(f.spec, x0, d_tr), "no improvement over the starting model")
-        cvr = cross_validate(f.spec, ev, d_tr, m_tr, f.x, labels, max_nfev=config.cv_max_nfev)
+        cvr = cross_validate(f.spec, ev, d_tr, m_fit, f.x, labels, max_nfev=config.cv_max_nfev)
         c = screened[name]
-        final[name] = _candidate(name, f.spec, f, m_tr, cvr, cv0, c.signature,
+        final[name] = _candidate(name, f.spec, f, m_fit, cvr, cv0, c.signature,
                                  c.fit_start, rss0, base.size, m, config, ev, d_va, m_va,
                                  before[va], refined=True)
     rest = [replace(c, significant=False, refined=False) for c in order[config.refine:]]
@@ -440,6 +451,10 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         "residuals_before": res_before,
         "residuals_after": res_after,
         "claims": {"keypoints": claims, "not_shrunk": unshrunk},
+        "robust": {"huber_c": config.huber_c, "down_weighted": [
+            {"sample": train_rows[i].label, "quantity": QUANTITIES[k],
+             "weight": float(weights[i, k])}
+            for i, k in zip(*np.nonzero(weights < 1.0))]},
         "unexplained_residual": left,
         "noise_floor": {"sigma_mm": dict(zip(QUANTITIES, sigma)),
                         "how": "residual standard error of a quadratic surface in (d, p) fitted "
