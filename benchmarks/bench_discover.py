@@ -371,7 +371,7 @@ def table(results: list, summary: dict) -> str:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--groups", default=",".join(GROUPS))
-    ap.add_argument("--only", default=None, help="comma-separated case ids to run")
+    ap.add_argument("--only", default=None, help="comma-separated case ids to run, in this order")
     ap.add_argument("--log", default=None, help="JSON lines file: append results, skip done cases")
     ap.add_argument("--no-proposal", action="store_true", help="skip the proposal proof")
     ap.add_argument("--list", action="store_true", help="print the case ids and exit")
@@ -388,9 +388,9 @@ def main(argv=None) -> int:
     if args.list:
         print("\n".join(c["id"] for c in todo))
         return 0
-    if args.only:
-        keep = set(args.only.split(","))
-        todo = [c for c in todo if c["id"] in keep]
+    if args.only:                       # in the order given
+        by_id = {c["id"]: c for c in todo}
+        todo = [by_id[i] for i in args.only.split(",") if i in by_id]
     done = {}
     if args.log and pathlib.Path(args.log).exists():
         for line in pathlib.Path(args.log).read_text().splitlines():

@@ -381,3 +381,44 @@ def test_robust_fit_lists_the_outlier_row_and_names_nothing_on_null_data():
     down = s["robust"]["down_weighted"]
     assert {"sample": "t03", "quantity": "h"} in [{k: d[k] for k in ("sample", "quantity")} for d in down]
     assert min(d["weight"] for d in down if d["sample"] == "t03") < 0.5
+
+
+# ----------------------------------------------------------------------------- forward selection
+
+def test_model_spec_with_a_prior_effect_orders_and_decodes_both():
+    spec = ModelSpec(START, "prestretch_loss").then("hoop_bending")
+    assert spec.prior == ("prestretch_loss",) and spec.offset == 6
+    assert spec.names == BASE_FREE + ("loss", "H")
+    x = spec.extend(ModelSpec(START, "prestretch_loss").encode(START, (0.3,)), (4.0,))
+    assert spec.decode(x)[1] == {"prestretch_loss": (pytest.approx(0.3),),
+                                 "hoop_bending": (pytest.approx(4.0),)}
+    with pytest.raises(InvalidInputError, match="already in the model"):
+        spec.then("hoop_bending").with_effect("prestretch_loss")
+
+
+def test_forward_selection_finds_the_second_hidden_effect():
+    """prestretch_loss 0.35 and hoop_bending 8 hidden together; the model with prestretch_loss
+    leaves a large residual that hoop_bending explains, significantly on equal footing."""
+    from types import SimpleNamespace
+
+    from stitchswitch.validation.discovery.evaluate import solve_item
+    from stitchswitch.validation.discovery.synthetic import paper_designs
+    from stitchswitch.validation.discovery.workflow import _forward
+
+    rng = np.random.default_rng(41)
+    d_tr, d_va = paper_designs(rng, 5, (30.0, 50.0, 70.0, 90.0), (0.6, 0.8, 1.0))
+    active = {"prestretch_loss": (0.35,), "hoop_bending": (8.0,)}
+    clean = np.array([solve_item((d, p, TRUE, active, None))[0] for d, p in d_tr + d_va])
+    noisy = clean + rng.normal(0, 1, clean.shape) * 0.3 * np.array(SIGMA_MM)
+    m_tr = np.maximum(np.round(noisy, 2), 0.1)[:len(d_tr)]
+    ev = Evaluator()
+    spec = ModelSpec(START, "prestretch_loss")
+    f = fit(spec, ev, d_tr, m_tr, spec.encode(TRUE, (0.35,)), max_nfev=10)
+    first = SimpleNamespace(spec=spec, x=f.x, effect="prestretch_loss")
+    config = DiscoveryConfig(effects=("prestretch_loss", "hoop_bending"), folds=3, fit_max_nfev=8,
+                             cv_max_nfev=2, scan_points=3, permutations=300)
+    out = _forward(first, f, ev, d_tr, m_tr, fold_labels(d_tr, 3, 0), config)
+    assert out["effect"] == "hoop_bending" and out["significant"]
+    assert out["p_value"] < out["threshold"] == pytest.approx(0.05)
+    assert out["cv_mse_mm2"] < out["cv_mse_first_only_mm2"]
+    assert out["parameters"]["H"] > 1.0

@@ -113,7 +113,7 @@ def scan_effect(spec, ev, designs, measured, x_base, points: int = 5, J0=None):
     measured = np.asarray(measured, dtype=float)
     xs = [spec.extend(x_base, v) for v in scan_values(spec, points)]
     preds = ev.keypoints(spec, xs, designs)
-    k = len(spec.free)
+    k = spec.offset
     if J0 is not None:
         lo, hi = spec.bounds()
         corrected = []
@@ -180,7 +180,7 @@ def equal_footing(base_spec, ev, designs, measured, base_fit, fits, passes, *,
     squares from the coefficients of each fit in ``fits`` ({name: Fit}, in order) for which
     ``passes(rss0, fit)`` holds against the best starting-model RSS so far."""
     measured = np.asarray(measured, dtype=float)
-    k = len(base_spec.free)
+    k = base_spec.size
     best, log = base_fit, []
     for name, f in fits.items():
         rss0 = float(np.sum((best.predictions - measured) ** 2))

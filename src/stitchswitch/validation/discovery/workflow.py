@@ -1,28 +1,32 @@
-"""Discrepancy discovery: find where the model and the data disagree, name the missing effect,
-add it, and show the gap shrink on the validation rows.
+"""Discrepancy discovery: find where the model and the data disagree, name the missing effect
+(or say that the data cannot tell), add it, show the gap shrink on the validation rows, and
+propose the samples that would decide.
 
-``discover(data, start, config)`` runs five steps, each recorded in the result:
+``discover(data, start, config)`` runs these steps, each recorded in the result:
 
-1. **Calibrate the starting model** on the training rows: its free coefficients
-   (``discovery_space.BASE_FREE``) by least squares (``discovery_fit``), optionally after a short
-   differential evolution.
-2. **Locate the disagreement**: residuals (measured - predicted) per quantity on every row, and
-   for each quantity a cross-validated smoother-against-zero randomization test
-   (``discovery_residuals``): is the pattern over (d, p) systematic or noise?
-3. **Candidates**: every effect of the library (``validation.discovery.effects``) is added in turn. Its
-   sensitivity signature at the calibrated starting model, and the part of it that recalibrating
-   the coefficients cannot mimic, are correlated with the residuals (``discovery_signature``).
-   Then all coefficients and the effect's parameters are refitted on the training rows.
-4. **Rank** the candidates by K-fold cross-validated error on the training rows
-   (``discovery_cv``; cross-validation is the complexity penalty: held-out error rises when an
-   extra parameter fits noise). The validation rows take no part in fitting, ranking or the
-   decision.
-5. **Decide**: the best-ranked candidate is named only when it beats the starting model's
-   cross-validated error *and* its training-error improvement is significant against the noise:
-   an F test (noise variance from the extended model's residuals) at alpha / (number of
-   candidates) (Bonferroni: the winner was selected among them). Otherwise no missing effect
-   is reported. The before/after table is the validation rows' error of the calibrated starting
-   model and of the model with the named effect.
+1. **Calibrate the starting model** on the training rows (``space.BASE_FREE``, least squares,
+   optionally after a short differential evolution) at the screening resolution
+   (``config.screen_nodes``, 150 nodes), then polish it at the material's own resolution.
+   Optionally robust (``config.huber_c``: Huber's loss, ``robust``).
+2. **Screen** every library effect at the screening resolution: its sensitivity signature and
+   the part recalibration cannot absorb (``signature``), a refit of all coefficients and the
+   effect (``fit.fit_effect``), and a cross-validation with one-step fold refits.
+3. **Refine the leaders**: the ``config.refine`` best-screened candidates are polished and
+   cross-validated (``cv``) at full resolution. The starting model is re-polished from the
+   coefficients of every leader that would pass the F test (``fit.equal_footing``): both sides
+   of the nested comparison are fitted equally well, so an effect at zero strength cannot look
+   significant.
+4. **Decide**: the best-ranked candidate passes when it lowers the starting model's
+   cross-validated error, its F test against the equally polished starting model gives p <
+   alpha / (number of candidates), and its strength is not zero. Other leaders whose held-out
+   losses are within the noise of it (``cv.within_noise``) make the verdict
+   "indistinguishable" (none is named). A passing effect is named only if it shrinks the
+   systematic part (``residuals.smooth_split``) of every systematic keypoint it claims (those
+   whose unabsorbed signature correlates positively with the residuals).
+5. **Report** the residual tests before and after (``residuals``; a systematic residual left
+   is "an unexplained residual"), the estimated noise floor and the share of the systematic
+   residual explained, and the next samples (``proposal``) that best separate the leading
+   models. The validation rows take no part in fitting, ranking or the decision.
 """
 from __future__ import annotations
 
@@ -66,7 +70,9 @@ class DiscoveryConfig:
     ``refine`` best are polished (``polish_max_nfev`` steps) and cross-validated
     (``cv_max_nfev``) at the starting material's own resolution (None: no screening).
     ``propose``: how many next samples to propose. ``huber_c``: a robust fit (Huber's loss with
-    threshold ``huber_c`` robust sigmas, ``discovery.robust``); None: least squares."""
+    threshold ``huber_c`` robust sigmas, ``discovery.robust``); None: least squares. ``forward``:
+    when a named effect leaves a systematic residual, try a second effect (forward selection
+    with the same rule, at alpha / (number of candidates left))."""
 
     effects: tuple | None = None
     folds: int = 5
@@ -84,6 +90,7 @@ class DiscoveryConfig:
     polish_max_nfev: int = 4
     propose: int = 5
     huber_c: float | None = None
+    forward: bool = True
 
     def __post_init__(self) -> None:
         names = tuple(self.effects) if self.effects is not None else tuple(LIBRARY)
@@ -184,7 +191,7 @@ class Discovery:
 
 def stage_count(config: DiscoveryConfig) -> int:
     """Number of progress stages of ``discover`` (for a progress bar)."""
-    return 4 + 2 * len(config.effects)
+    return 5 + 2 * len(config.effects)
 
 
 def _metrics(pred, measured) -> dict:
@@ -232,13 +239,57 @@ def _candidate(name, spec, f, m_tr, cv, cv0, why, how, rss0, k0, m, config, ev, 
         significant=bool(refined and not zero and p < config.alpha / m
                          and cv.score_mm2 < cv0.score_mm2),
         n_parameters=spec.size, parameters=dict(f.parameters),
-        effect_parameters=dict(zip(spec.names[len(spec.free):], spec.decode(f.x)[1].get(
+        effect_parameters=dict(zip(spec.names[spec.offset:], spec.decode(f.x)[1].get(
             name, (0.0,) * len(spec.effect_parameters)))),
         val_mae_before_mm={q: v["mae_mm"] for q, v in _metrics(before_va, m_va).items()},
         val_mae_after_mm={q: v["mae_mm"] for q, v in _metrics(pred_va, m_va).items()},
         signature=why, uncertified_solves=f.uncertified, fit_start=how,
         spec=spec, x=f.x, resolution_nodes=spec.start.n_nodes, refined=refined,
         zero_strength=zero, row_loss=cv.row_loss)
+
+
+def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
+    """The best second effect after ``first`` (a refined ``Candidate``): every other effect
+    screened on top of ``first_screen`` (its screening-resolution fit), the best one polished
+    at full resolution and tested against the model with ``first`` re-polished on equal
+    footing (F test at alpha / (number of candidates left), CV below it, non-zero)."""
+    from stitchswitch.validation.discovery.fit import Fit
+
+    rss = lambda f: float(np.sum((f.predictions - m_fit) ** 2))      # noqa: E731
+    base_c = first_screen.spec
+    J = jacobian(base_c, ev, d_tr, first_screen.x, *base_c.bounds())
+    best = None
+    for name in config.effects:
+        if name == first.effect:
+            continue
+        spec = base_c.then(name)
+        sig = signature(spec, ev, d_tr, first_screen.x)
+        f, _ = fit_effect(spec, ev, d_tr, m_fit, first_screen, J, sig,
+                          max_nfev=config.screen_max_nfev, scan_points=config.scan_points + 2,
+                          refine_both=True)
+        cv = cross_validate(spec, ev, d_tr, m_fit, f.x, labels, max_nfev=1)
+        if best is None or cv.score_mm2 < best[2]:
+            best = (name, f, cv.score_mm2)
+    name, fc, _ = best
+    base_f = first.spec
+    pred_a = ev.one(base_f, first.x, d_tr)
+    fit_a = Fit(base_f, first.x, pred_a, float(np.mean((pred_a - m_fit) ** 2)), 0, 0, "first")
+    spec_f = base_f.then(name)
+    ff = fit(spec_f, ev, d_tr, m_fit, fc.x, max_nfev=config.polish_max_nfev)
+    m_left = len(config.effects) - 1
+    threshold = config.alpha / m_left
+    passes = lambda r0, f: f_test(r0, rss(f), m_fit.size, base_f.size, f.spec.size)[1] < threshold  # noqa: E731
+    fit_a, _ = equal_footing(base_f, ev, d_tr, m_fit, fit_a, {name: ff}, passes,
+                             max_nfev=config.fit_max_nfev)
+    cv_a = cross_validate(base_f, ev, d_tr, m_fit, fit_a.x, labels, max_nfev=config.cv_max_nfev)
+    cv_f = cross_validate(spec_f, ev, d_tr, m_fit, ff.x, labels, max_nfev=config.cv_max_nfev)
+    F, p = f_test(rss(fit_a), rss(ff), m_fit.size, base_f.size, spec_f.size)
+    zero = _zero(spec_f, ff.x)
+    return {"effect": name, "after": first.effect, "f_statistic": F, "p_value": p,
+            "threshold": threshold, "cv_mse_mm2": cv_f.score_mm2,
+            "cv_mse_first_only_mm2": cv_a.score_mm2, "zero_strength": zero,
+            "significant": bool(p < threshold and cv_f.score_mm2 < cv_a.score_mm2 and not zero),
+            "parameters": spec_f.describe(ff.x), "spec": spec_f, "x": ff.x}
 
 
 def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = DiscoveryConfig(), *,
@@ -420,6 +471,25 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                   f"({top.cv_mse_mm2:.3f} against {cv0.score_mm2:.3f} mm^2) but not "
                   f"significantly against the starting model fitted equally well: "
                   f"p = {top.p_value:.2g} >= {threshold:.2g}")
+    second = None
+    if verdict == "named" and left and config.forward and len(config.effects) > 1:
+        step(f"forward selection: a second effect after {chosen.effect}")
+        second = _forward(chosen, screened_fit[chosen.effect], ev, d_tr, m_fit, labels, config)
+        if second["significant"]:
+            after[tr] = ev.one(second["spec"], second["x"], d_tr)
+            after[va] = ev.one(second["spec"], second["x"], d_va)
+            split1 = smooth_split(d_all[tr], p_all[tr], m_tr - after[tr])
+            res_after = residual_analysis(d_all, p_all, measured - after, QUANTITIES,
+                                          alpha=config.alpha, permutations=config.permutations,
+                                          seed=config.seed)
+            left = [q for q in QUANTITIES if res_after[q]["systematic"]]
+            e1 = sum(split1["systematic_energy_mm2"])
+            explained = (1.0 - e1 / e0) if e0 > 0 else None
+            reason += (f"; forward selection adds {second['effect']} (p = {second['p_value']:.2g}"
+                       f" < {second['threshold']:.2g} against the model with {chosen.effect})")
+        else:
+            reason += (f"; forward selection: no significant second effect (best "
+                       f"{second['effect']}, p = {second['p_value']:.2g})")
     if verdict != "named" and verdict != "indistinguishable":
         chosen = None
         after = before.copy()
@@ -434,6 +504,11 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     proposal = propose(predictions(ev, models, grid), grid, sigma, config.propose)
     summary = {
         "missing_effect": chosen.effect if verdict == "named" else None,
+        "missing_effects": ([chosen.effect] + ([second["effect"]] if second and
+                                               second["significant"] else []))
+        if verdict == "named" else [],
+        "forward": None if second is None else {
+            k: v for k, v in second.items() if k not in ("spec", "x")},
         "verdict": verdict,
         "significant": verdict == "named",
         "indistinguishable": names if verdict == "indistinguishable" else [],
