@@ -154,7 +154,8 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
         lines.append("missing effect: the data cannot tell apart "
                      + " / ".join(rep["indistinguishable"]))
     else:
-        lines.append(f"missing effect: {name}" if name else "missing effect: none found")
+        names = " + ".join(rep["missing_effects"]) or name
+        lines.append(f"missing effect: {names}" if name else "missing effect: none found")
     lines.append(f"  {rep['decision']}")
     if rep.get("unexplained_residual"):
         lines.append("  an unexplained residual remains: " + ", ".join(rep["unexplained_residual"])

@@ -65,6 +65,7 @@ def report_dict(disc, data, start, start_label: str = "default") -> dict:
         "effect_parameters": s["effect_parameters"], "decision": s["decision"],
         "ranking": s["ranking"], "before": s["before"], "after": s["after"],
         "verdict": s["verdict"], "indistinguishable": s["indistinguishable"],
+        "missing_effects": s["missing_effects"], "forward": s["forward"],
         "after_model": s["after_model"], "claims": s["claims"],
         "unexplained_residual": s["unexplained_residual"], "noise_floor": s["noise_floor"],
         "systematic": s["systematic"], "proposal": s["proposal"], "robust": s["robust"],
