@@ -146,8 +146,10 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
     lines.append(f"{'rank':>4}  {'effect':20s} {'CV MSE':>8} {'p':>9}  {'sig':3}  strength")
     for r in rep["ranking"]:
         strength = ", ".join(f"{k}={v:.4g}" for k, v in r["effect_parameters"].items())
+        screened = "" if r.get("refined", True) else "  (screened out at "
+        screened += f"{r['resolution_nodes']} nodes)" if screened else ""
         lines.append(f"{r['rank']:>4}  {r['effect']:20s} {r['score']:8.3f} {r['p_value']:9.2g}  "
-                     f"{'yes' if r['significant'] else 'no':3}  {strength}")
+                     f"{'yes' if r['significant'] else 'no':3}  {strength}{screened}")
     lines.append("")
     name = rep["missing_effect"]
     if rep.get("indistinguishable"):
