@@ -42,6 +42,13 @@ def test_report_json_and_summary(case, tmp_path):
     assert set(rep["before"]["h"]) == {"mae_mm", "pct_error"}
     assert sorted(p.name for p in out.iterdir()) == sorted(rep["files"])
     assert (out / "report.json").read_text() == js.read_text()
+    for key in ("verdict", "indistinguishable", "noise_floor", "systematic", "proposal",
+                "unexplained_residual", "claims"):
+        assert key in rep
+    assert "noise floor (estimated)" in r.stdout and "next samples" in r.stdout
+    template = (out / "next_samples.csv").read_text().splitlines()
+    assert template[0].startswith("# source: TEMPLATE")
+    assert len(template) == 2 + len(rep["proposal"]["designs"]) and template[2].endswith(",,,,,,train")
     html = (out / "report.html").read_text()
     assert "data:image/png;base64," in html and "Where the model is wrong" in html
     md = (out / "report.md").read_text()

@@ -252,7 +252,10 @@ def test_null_data_names_no_effect():
         scan_points=3, permutations=300))
     assert disc.summary["missing_effect"] is None and not disc.summary["significant"]
     assert disc.summary["after"] == disc.summary["before"]
-    assert "not significantly" in disc.summary["decision"] or "no candidate" in disc.summary["decision"]
+    assert any(w in disc.summary["decision"] for w in ("not significantly", "no candidate",
+                                                       "zero strength"))
+    assert disc.summary["verdict"] == "none" and disc.summary["indistinguishable"] == []
+    assert not any(r["significant"] for r in disc.summary["ranking"] if r["zero_strength"])
 
 
 def test_config_rejects_bad_settings():
@@ -262,3 +265,160 @@ def test_config_rejects_bad_settings():
         DiscoveryConfig(effects=("hardening", "hardening"))
     with pytest.raises(InvalidInputError, match="alpha"):
         DiscoveryConfig(alpha=1.5)
+
+
+# ----------------------------------------------------------------------------- fair comparison
+
+def test_a_zero_strength_candidate_is_not_significant_against_an_equally_polished_start():
+    """The weak-hardening case: the starting calibration stopped short of its optimum, and a
+    candidate whose refit leaves the effect at zero strength (the starting model itself) but
+    polishes the coefficients further. Against the short calibration its F test passes; against
+    the starting model re-polished from the same coefficients it cannot."""
+    from stitchswitch.validation.discovery.fit import Fit, equal_footing
+
+    data = _data("hardening", (1.0,), 31)
+    tr = np.array([r.split == "train" for r in data.rows])
+    designs = [(r.diameter_mm, r.fill) for r, t in zip(data.rows, tr) if t]
+    m_tr = data.keypoints()[tr]
+    base = ModelSpec(START)
+    ev = Evaluator()
+    short = fit(base, ev, designs, m_tr, base.encode(START), max_nfev=1)
+    polished = fit(base, ev, designs, m_tr, short.x, max_nfev=15)
+    spec = base.with_effect("hoop_bending")
+    x = spec.extend(polished.x, (0.0,))
+    pred = ev.one(spec, x, designs)
+    zero = Fit(spec, x, pred, float(np.mean((pred - m_tr) ** 2)), 0, 0, "zero strength")
+    rss = lambda f: float(np.sum((f.predictions - m_tr) ** 2))     # noqa: E731
+    threshold = 0.05 / 6
+    naive = f_test(rss(short), rss(zero), m_tr.size, base.size, spec.size)[1]
+    assert naive < threshold          # the issue: "significant" at zero strength
+    passes = lambda rss0, f: f_test(rss0, rss(f), m_tr.size, base.size, f.spec.size)[1] < threshold  # noqa: E731
+    best, log = equal_footing(base, ev, designs, m_tr, short, {"hoop_bending": zero}, passes,
+                              max_nfev=15)
+    assert log and log[0]["from"] == "hoop_bending"
+    assert rss(best) <= rss(zero) + 1e-9
+    assert f_test(rss(best), rss(zero), m_tr.size, base.size, spec.size)[1] >= threshold
+
+
+def test_within_noise_groups_models_the_losses_cannot_separate():
+    from stitchswitch.validation.discovery.cv import within_noise
+
+    rng = np.random.default_rng(7)
+    best = rng.gamma(2.0, 1.0, 25)
+    tie = best + rng.normal(0.0, 0.3, 25)          # the same on average
+    worse = best + 1.0 + rng.normal(0.0, 0.3, 25)  # clearly larger held-out losses
+    assert within_noise(best, {"tie": tie, "worse": worse}, 0.05) == ["tie"]
+
+
+def test_proposal_picks_the_designs_where_the_models_differ_and_spreads_them():
+    from stitchswitch.validation.discovery.proposal import design_grid, propose, template_csv
+
+    grid = design_grid(6, 5)
+    d = np.array([g[0] for g in grid])
+    a = np.zeros((len(grid), 5))
+    b = a.copy()
+    b[:, 0] = np.exp(-((d - 100.0) / 10.0) ** 2) * 3.0 + 0.01 * d   # differ most at large d
+    out = propose({"a": a, "b": b}, grid, (1.0,) * 5, k=3)
+    first = out["designs"][0]
+    assert first["d_mm"] == 100.0 and first["discrimination"] == pytest.approx(
+        (3.0 + 1.0) ** 2, rel=1e-6)
+    chosen = [(r["d_mm"], r["fill"]) for r in out["designs"]]
+    assert len(set(chosen)) == 3
+    # spread: the second choice is not the first's direct neighbour in fill at the same d
+    assert not (chosen[1][0] == 100.0 and abs(chosen[1][1] - chosen[0][1]) < 0.11)
+    assert out["separation"][0]["models"] == ["a", "b"]
+    assert out["separation"][0]["sigmas"] == pytest.approx(4.0, rel=1e-6)
+    text = template_csv(out)
+    lines = text.splitlines()
+    assert lines[1] == "sample_id,d_mm,fill,h_mm,r_a_mm,z_a_mm,r_b_mm,z_b_mm,split"
+    assert lines[2].startswith("next01,100,") and lines[2].endswith(",,,,,,train")
+    filled = text.replace(",,,,,,train", ",1,2,3,4,5,train") + "v1,50,0.8,1,2,3,4,5,val\n"
+    assert len(parse_measurements(filled, "t.csv").split("train")) == 3
+
+
+def test_smooth_split_estimates_the_noise_and_the_systematic_part():
+    from stitchswitch.validation.discovery.residuals import smooth_split
+
+    d, p = _grid(8)
+    rng = np.random.default_rng(5)
+    trend = 2.0 * ((d - 55) / 35) ** 2
+    e = np.column_stack([trend + rng.normal(0, 0.5, d.size), rng.normal(0, 0.5, d.size)])
+    out = smooth_split(d, p, e)
+    assert out["noise_sigma_mm"][0] == pytest.approx(0.5, rel=0.2)
+    assert out["noise_sigma_mm"][1] == pytest.approx(0.5, rel=0.2)
+    assert out["systematic_energy_mm2"][0] == pytest.approx(np.mean(trend ** 2), rel=0.2)
+    assert out["systematic_energy_mm2"][1] < 0.05
+
+
+def test_winsorize_is_hubers_pseudo_observation_step():
+    from stitchswitch.validation.discovery.robust import robust_scale, winsorize
+
+    rng = np.random.default_rng(9)
+    pred = np.zeros((400, 5))
+    meas = rng.normal(0.0, 1.0, (400, 5))
+    meas[3, 0] = 15.0                                   # an outlier
+    s = robust_scale(meas - pred)
+    assert s[0] == pytest.approx(1.0, rel=0.15)
+    pseudo, w, _ = winsorize(meas, pred, 2.5)
+    assert pseudo[3, 0] == pytest.approx(2.5 * s[0]) and w[3, 0] == pytest.approx(2.5 * s[0] / 15.0)
+    inside = np.abs(meas) <= 2.5 * s
+    assert np.array_equal(pseudo[inside], meas[inside]) and np.all(w[inside] == 1.0)
+
+
+def test_robust_fit_lists_the_outlier_row_and_names_nothing_on_null_data():
+    text = dataset_text(None, (), seed=22, material=TRUE,
+                        sigma_mm=tuple(0.3 * s for s in SIGMA_MM), **TRAIN)
+    lines = text.splitlines()
+    k = next(i for i, line in enumerate(lines) if line.startswith("t03,"))
+    cells = lines[k].split(",")
+    cells[3] = f"{float(cells[3]) + 8.0:.2f}"            # h of t03 off by 8 mm
+    lines[k] = ",".join(cells)
+    data = parse_measurements("\n".join(lines) + "\n", "outlier.csv")
+    config = DiscoveryConfig(effects=("prestretch_loss", "hoop_bending"), folds=3, fit_max_nfev=8,
+                             cv_max_nfev=2, scan_points=3, permutations=300, huber_c=2.5)
+    s = discover(data, START, config).summary
+    assert s["missing_effect"] is None
+    down = s["robust"]["down_weighted"]
+    assert {"sample": "t03", "quantity": "h"} in [{k: d[k] for k in ("sample", "quantity")} for d in down]
+    assert min(d["weight"] for d in down if d["sample"] == "t03") < 0.5
+
+
+# ----------------------------------------------------------------------------- forward selection
+
+def test_model_spec_with_a_prior_effect_orders_and_decodes_both():
+    spec = ModelSpec(START, "prestretch_loss").then("hoop_bending")
+    assert spec.prior == ("prestretch_loss",) and spec.offset == 6
+    assert spec.names == BASE_FREE + ("loss", "H")
+    x = spec.extend(ModelSpec(START, "prestretch_loss").encode(START, (0.3,)), (4.0,))
+    assert spec.decode(x)[1] == {"prestretch_loss": (pytest.approx(0.3),),
+                                 "hoop_bending": (pytest.approx(4.0),)}
+    with pytest.raises(InvalidInputError, match="already in the model"):
+        spec.then("hoop_bending").with_effect("prestretch_loss")
+
+
+def test_forward_selection_finds_the_second_hidden_effect():
+    """prestretch_loss 0.35 and hoop_bending 8 hidden together; the model with prestretch_loss
+    leaves a large residual that hoop_bending explains, significantly on equal footing."""
+    from types import SimpleNamespace
+
+    from stitchswitch.validation.discovery.evaluate import solve_item
+    from stitchswitch.validation.discovery.synthetic import paper_designs
+    from stitchswitch.validation.discovery.workflow import _forward
+
+    rng = np.random.default_rng(41)
+    d_tr, d_va = paper_designs(rng, 5, (30.0, 50.0, 70.0, 90.0), (0.6, 0.8, 1.0))
+    active = {"prestretch_loss": (0.35,), "hoop_bending": (8.0,)}
+    clean = np.array([solve_item((d, p, TRUE, active, None))[0] for d, p in d_tr + d_va])
+    noisy = clean + rng.normal(0, 1, clean.shape) * 0.3 * np.array(SIGMA_MM)
+    m_tr = np.maximum(np.round(noisy, 2), 0.1)[:len(d_tr)]
+    ev = Evaluator()
+    spec = ModelSpec(START, "prestretch_loss")
+    f = fit(spec, ev, d_tr, m_tr, spec.encode(TRUE, (0.35,)), max_nfev=10)
+    first = SimpleNamespace(spec=spec, x=f.x, effect="prestretch_loss")
+    config = DiscoveryConfig(effects=("prestretch_loss", "hoop_bending"), folds=3, fit_max_nfev=8,
+                             cv_max_nfev=2, scan_points=3, permutations=300)
+    out = _forward(first, f, ev, d_tr, m_tr, fold_labels(d_tr, 3, 0), config)
+    assert out["effect"] == "hoop_bending" and out["significant"]
+    assert out["p_value"] < out["threshold"] == pytest.approx(0.05)
+    assert out["cv_mse_mm2"] < out["cv_mse_first_only_mm2"]
+    assert out["parameters"]["H"] > 1.0

@@ -53,9 +53,12 @@ def _effects(value):
 @click.option("--de-generations", type=click.IntRange(min=0), default=0, show_default=True,
               help="Differential-evolution generations before calibrating the starting model "
                    "(0: least squares from the starting material).")
+@click.option("--huber", type=click.FloatRange(min=0.0, min_open=True), default=None,
+              metavar="C", help="Robust fit: Huber's loss at C robust sigmas (default: least "
+                                "squares); the down-weighted rows are listed.")
 @click.option("--seed", type=int, default=0, show_default=True)
 def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_out, workers,
-             folds, alpha, de_generations, seed):
+             folds, alpha, de_generations, huber, seed):
     """Find where the model and the data disagree, name the missing effect, add it, recalibrate
     and show the gap on the validation rows.
 
@@ -83,7 +86,7 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
     if not demo and len(given) != 1:
         raise options.InputError("give the data as DATA.csv or --data FILE (once), or use --demo")
     config = DiscoveryConfig(effects=_effects(effects), folds=folds, alpha=alpha,
-                             de_generations=de_generations, seed=seed)
+                             de_generations=de_generations, seed=seed, huber_c=huber)
     if report_dir is not None:
         check_discovery_dir(report_dir)
     json_file = None if json_out in (None, "-") else json_out
@@ -143,12 +146,38 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
     lines.append(f"{'rank':>4}  {'effect':20s} {'CV MSE':>8} {'p':>9}  {'sig':3}  strength")
     for r in rep["ranking"]:
         strength = ", ".join(f"{k}={v:.4g}" for k, v in r["effect_parameters"].items())
+        screened = "" if r.get("refined", True) else "  (screened out at "
+        screened += f"{r['resolution_nodes']} nodes)" if screened else ""
         lines.append(f"{r['rank']:>4}  {r['effect']:20s} {r['score']:8.3f} {r['p_value']:9.2g}  "
-                     f"{'yes' if r['significant'] else 'no':3}  {strength}")
+                     f"{'yes' if r['significant'] else 'no':3}  {strength}{screened}")
     lines.append("")
     name = rep["missing_effect"]
-    lines.append(f"missing effect: {name}" if name else "missing effect: none found")
+    if rep.get("indistinguishable"):
+        lines.append("missing effect: the data cannot tell apart "
+                     + " / ".join(rep["indistinguishable"]))
+    else:
+        names = " + ".join(rep["missing_effects"]) or name
+        lines.append(f"missing effect: {names}" if name else "missing effect: none found")
     lines.append(f"  {rep['decision']}")
+    if rep.get("unexplained_residual"):
+        lines.append("  an unexplained residual remains: " + ", ".join(rep["unexplained_residual"])
+                     + " (map: residuals_after.png)")
+    down = rep["robust"]["down_weighted"]
+    if down:
+        lines.append("  down-weighted (Huber): " + ", ".join(
+            f"{d['sample']} {d['quantity']} (w {d['weight']:.2f})" for d in down))
+    noise = rep["noise_floor"]["sigma_mm"]
+    share = rep["systematic"]["share_explained"]
+    lines.append("  noise floor (estimated) sigma: " + ", ".join(
+        f"{q} {noise[q]:.2f}" for q in QUANTITIES) + " mm; share of the systematic residual "
+        "explained: " + ("n/a" if share is None else f"{100 * share:.0f} %"))
+    if rep["proposal"]["designs"]:
+        lines.append("")
+        lines.append("next samples (most discriminating first; template: next_samples.csv "
+                     "in the report):")
+        for row in rep["proposal"]["designs"]:
+            lines.append(f"  d = {row['d_mm']:g} mm, p = {row['fill']:g}: expected chi^2 "
+                         f"{row['discrimination']:.1f} between the leading models")
     lines.append("")
     lines.append(f"{'validation':10s} " + " ".join(f"{q:>7}" for q in QUANTITIES))
     for which in ("before", "after"):

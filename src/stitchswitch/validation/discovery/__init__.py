@@ -4,7 +4,9 @@ missing effect explains it, and how much the gap shrinks once it is added.
 * ``workflow``: ``discover(data, material, DiscoveryConfig) -> Discovery``.
 * ``space``: the fitted parameters (``ModelSpec``); ``evaluate``: cached keypoints of many
   (design, parameters) pairs; ``fit``: least-squares fits; ``cv``: cross-validation and the F test;
-  ``residuals``: is a residual pattern systematic; ``signature``: sensitivity signatures.
+  ``residuals``: is a residual pattern systematic, its systematic part and the noise;
+  ``signature``: sensitivity signatures; ``robust``: Huber's loss by pseudo-observations;
+  ``proposal``: the next samples that best separate the leading models.
 * ``report``, ``figures``: the report (Markdown, HTML, JSON); ``synthetic``: SYNTHETIC datasets
   with a hidden effect.
 * ``effects/``: the library of candidate effects.

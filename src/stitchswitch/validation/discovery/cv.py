@@ -13,6 +13,9 @@
   variance estimated from the larger model's residuals; p from the F(m, n - k1) distribution.
 * ``sign_flip_test``: one-sided randomization test that paired per-design differences have a
   positive mean (random sign flips, seeded).
+* ``within_noise``: which models' held-out losses are not significantly worse than the best
+  one's (that sign-flip test on the paired per-row differences, p >= alpha): the data cannot
+  tell them from the best.
 """
 from __future__ import annotations
 
@@ -22,7 +25,8 @@ import numpy as np
 
 from stitchswitch.validation.discovery.fit import fit
 
-__all__ = ["fold_labels", "CrossValidation", "cross_validate", "f_test", "sign_flip_test"]
+__all__ = ["fold_labels", "CrossValidation", "cross_validate", "f_test", "sign_flip_test",
+           "within_noise"]
 
 
 def fold_labels(designs, k: int, seed: int) -> np.ndarray:
@@ -78,3 +82,11 @@ def sign_flip_test(diff, permutations: int = 10000, seed: int = 0) -> float:
     signs = np.random.default_rng(seed).choice((-1.0, 1.0), size=(permutations, diff.size))
     null = (signs * diff).mean(axis=1)
     return float((1 + np.count_nonzero(null >= observed)) / (permutations + 1))
+
+
+def within_noise(best_loss, others: dict, alpha: float, seed: int = 0) -> list:
+    """Names of ``others`` ({name: per-row held-out loss}) whose loss is not significantly
+    larger than ``best_loss`` (paired one-sided sign-flip test, p >= ``alpha``)."""
+    best_loss = np.asarray(best_loss, dtype=float)
+    return [name for name, loss in others.items()
+            if sign_flip_test(np.asarray(loss, dtype=float) - best_loss, seed=seed) >= alpha]

@@ -41,8 +41,9 @@ def solve_item(item):
 
 
 def _key(spec, x, design):
-    return (spec.effect, spec.free, np.asarray(x, dtype=float).tobytes(), float(design[0]),
-            float(design[1]))
+    # the resolution is part of the key: the screening and the full-resolution specs share x
+    return (spec.effect, spec.prior, spec.free, spec.start.n_nodes, spec.start.dr_max_mm,
+            np.asarray(x, dtype=float).tobytes(), float(design[0]), float(design[1]))
 
 
 class Evaluator:

@@ -19,6 +19,7 @@ from stitchswitch.files.outdir import check_outdir, previous_output, write_outdi
 from stitchswitch.reduced.model.material_io import material_hash
 from stitchswitch.validation.discovery.effects import get_effect
 from stitchswitch.validation.discovery.figures import FIGURES, all_figures
+from stitchswitch.validation.discovery.proposal import template_csv
 from stitchswitch.validation.measured import QUANTITIES
 from stitchswitch.validation.report import provenance_statement
 
@@ -26,7 +27,7 @@ __all__ = ["GENERATOR", "REPORT_FILES", "METHOD", "report_dict", "check_discover
            "write_discovery_report", "report_json"]
 
 GENERATOR = "stitchswitch discover"
-REPORT_FILES = ("report.md", "report.html", "report.json") + FIGURES
+REPORT_FILES = ("report.md", "report.html", "report.json", "next_samples.csv") + FIGURES
 METHOD = {
     "calibration": "least squares (scipy trust-region 'trf', forward finite-difference "
                    "Jacobian) of the MSE over h, r_a, z_a, r_b, z_b of the training rows; "
@@ -63,6 +64,11 @@ def report_dict(disc, data, start, start_label: str = "default") -> dict:
         "missing_effect": s["missing_effect"], "significant": s["significant"],
         "effect_parameters": s["effect_parameters"], "decision": s["decision"],
         "ranking": s["ranking"], "before": s["before"], "after": s["after"],
+        "verdict": s["verdict"], "indistinguishable": s["indistinguishable"],
+        "missing_effects": s["missing_effects"], "forward": s["forward"],
+        "after_model": s["after_model"], "claims": s["claims"],
+        "unexplained_residual": s["unexplained_residual"], "noise_floor": s["noise_floor"],
+        "systematic": s["systematic"], "proposal": s["proposal"], "robust": s["robust"],
         "data": {"path": data.path, "source": data.source, "synthetic": data.synthetic,
                  "provenance": provenance_statement(data), "sha256": data.sha256,
                  "n_train": s["n_train"], "n_val": s["n_val"]},
@@ -136,6 +142,13 @@ def _story(rep: dict) -> dict:
                     f"absorbed by recalibrating the coefficients, and that part correlates with "
                     f"the residual pattern at {sig['correlation']:+.2f} over all quantities "
                     f"(strongest in {best_q}: {sig['per_quantity'][best_q]:+.2f}).")
+    elif rep.get("indistinguishable"):
+        verdict = ("**The data cannot tell apart " + " / ".join(rep["indistinguishable"]) +
+                   "**: " + rep["decision"] + ". What would separate them: " + "; ".join(
+                       f"{' vs '.join(s['models'])} at d = {s['d_mm']:g} mm, p = {s['fill']:g} "
+                       f"({s['sigmas']:.1f} sigma)" for s in rep["proposal"]["separation"]) + ".")
+        evidence = ("The \"after\" predictions use the best-ranked of the group, "
+                    f"{rep['after_model']}, for display only.")
     else:
         verdict = "No missing effect was found: " + rep["decision"] + "."
         evidence = ("The ranking and the signatures below are reported for inspection; none of "
@@ -145,10 +158,26 @@ def _story(rep: dict) -> dict:
         [q, _f(rep["before"][q]["mae_mm"]), _f(rep["after"][q]["mae_mm"]),
          _f(rep["before"][q]["pct_error"], 1), _f(rep["after"][q]["pct_error"], 1)]
         for q in QUANTITIES]
-    res_a = rep["residuals_after"]
-    left = [q for q in QUANTITIES if res_a[q]["systematic"]]
-    after_text = (("Residual structure left after the change: " + ", ".join(left) + ".")
-                  if left else "After the change no quantity's residuals test as systematic.")
+    left = rep["unexplained_residual"]
+    noise = rep["noise_floor"]["sigma_mm"]
+    share = rep["systematic"]["share_explained"]
+    after_text = (("**An unexplained residual remains** in " + ", ".join(left) +
+                   " (map below).") if left else
+                  "After the change no quantity's residuals test as systematic.")
+    after_text += (" Estimated noise floor (" + rep["noise_floor"]["how"] + "): sigma " +
+                   ", ".join(f"{q} {noise[q]:.2f}" for q in QUANTITIES) + " mm. Share of the "
+                   "systematic residual explained: " +
+                   ("n/a" if share is None else f"{100 * share:.0f} %") + ".")
+    down = rep["robust"]["down_weighted"]
+    if down:
+        after_text += (f" Robust fit (Huber, c = {rep['robust']['huber_c']:g} robust sigmas); "
+                       "down-weighted: " + ", ".join(f"{d['sample']} {d['quantity']} (weight "
+                                                     f"{d['weight']:.2f})" for d in down) + ".")
+    if rep["proposal"]["designs"]:
+        after_text += (" Next samples (next_samples.csv, most discriminating first): " +
+                       "; ".join(f"d = {r['d_mm']:g} mm, p = {r['fill']:g} (chi^2 "
+                                 f"{r['discrimination']:.1f})" for r in rep["proposal"]["designs"])
+                       + ".")
     return {"calib": calib, "where": where, "res_table": res_table, "rank_table": rank_table,
             "verdict": verdict, "evidence": evidence, "gap_table": gap_table,
             "after_text": after_text}
@@ -224,7 +253,7 @@ def _html(rep: dict, images: dict) -> str:
             img("signatures.png", "signatures"))),
         Section("4. The gap before and after, validation rows", (
             _table(st["gap_table"]), img("before_after.png", "before and after"),
-            Paragraph(st["after_text"]), img("residuals_after.png", "residual maps after"))),
+            Paragraph(_bold(st["after_text"])), img("residuals_after.png", "residual maps after"))),
         Section("Method", (
             ItemList(tuple(inline(strong(k), f": {v}") for k, v in METHOD.items()), cls="note"),)),
     )
@@ -241,6 +270,7 @@ def write_discovery_report(disc, data, start, outdir, start_label: str = "defaul
     images = all_figures(disc)
     files = dict(images)
     files["report.json"] = report_json(rep).encode("utf-8")
+    files["next_samples.csv"] = template_csv(rep["proposal"]).encode("utf-8")
     files["report.md"] = lambda: _markdown(rep).encode("utf-8")
     files["report.html"] = lambda: _html(rep, images).encode("utf-8")
     write_outdir(outdir, files, previous=_PREVIOUS)

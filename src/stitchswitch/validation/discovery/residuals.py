@@ -15,12 +15,18 @@ For one quantity, the residuals e_i (measured - predicted, mm) at designs (d_i, 
 
 This is the cross-validation route (no replicate samples are needed for a noise
 estimate). A quantity is *systematic* when p < alpha / 5 (Bonferroni over the five keypoints).
+
+``smooth_split`` splits residuals into the smoother's fit (the *systematic part*, what a smooth
+function of the design explains) and an estimate of the noise: the residual standard error of
+that fit, sqrt(|e - H e|^2 / (n - 6)), unbiased for the noise sigma when the surface holds the
+systematic part. ``systematic_energy`` = max(0, |H e|^2 - 6 sigma^2) / n is the mean squared
+systematic residual with the noise the six-term fit absorbs taken out.
 """
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["design_basis", "loo_r2", "systematic_test", "residual_analysis"]
+__all__ = ["design_basis", "loo_r2", "systematic_test", "residual_analysis", "smooth_split"]
 
 
 def design_basis(d, p) -> np.ndarray:
@@ -67,3 +73,17 @@ def residual_analysis(d, p, residuals, quantities, *, alpha: float = 0.05,
         res["systematic"] = bool(res["p_value"] < alpha / len(quantities))
         out[q] = res
     return out
+
+
+def smooth_split(d, p, residuals) -> dict:
+    """Per column of ``residuals`` (n, m): {"systematic_rms_mm": RMS of H e, "noise_sigma_mm":
+    residual standard error of the quadratic surface, "systematic_energy_mm2"} (lists)."""
+    E = np.asarray(residuals, dtype=float)
+    X = design_basis(d, p)
+    H = _hat(X)
+    n, rank = E.shape[0], int(np.linalg.matrix_rank(X))
+    fitted = H @ E
+    sigma = np.sqrt(np.sum((E - fitted) ** 2, axis=0) / max(n - rank, 1))
+    energy = np.maximum(0.0, np.sum(fitted ** 2, axis=0) - rank * sigma ** 2) / n
+    return {"systematic_rms_mm": np.sqrt(np.mean(fitted ** 2, axis=0)).tolist(),
+            "noise_sigma_mm": sigma.tolist(), "systematic_energy_mm2": energy.tolist()}

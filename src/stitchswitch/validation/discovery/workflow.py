@@ -1,28 +1,32 @@
-"""Discrepancy discovery: find where the model and the data disagree, name the missing effect,
-add it, and show the gap shrink on the validation rows.
+"""Discrepancy discovery: find where the model and the data disagree, name the missing effect
+(or say that the data cannot tell), add it, show the gap shrink on the validation rows, and
+propose the samples that would decide.
 
-``discover(data, start, config)`` runs five steps, each recorded in the result:
+``discover(data, start, config)`` runs these steps, each recorded in the result:
 
-1. **Calibrate the starting model** on the training rows: its free coefficients
-   (``discovery_space.BASE_FREE``) by least squares (``discovery_fit``), optionally after a short
-   differential evolution.
-2. **Locate the disagreement**: residuals (measured - predicted) per quantity on every row, and
-   for each quantity a cross-validated smoother-against-zero randomization test
-   (``discovery_residuals``): is the pattern over (d, p) systematic or noise?
-3. **Candidates**: every effect of the library (``validation.discovery.effects``) is added in turn. Its
-   sensitivity signature at the calibrated starting model, and the part of it that recalibrating
-   the coefficients cannot mimic, are correlated with the residuals (``discovery_signature``).
-   Then all coefficients and the effect's parameters are refitted on the training rows.
-4. **Rank** the candidates by K-fold cross-validated error on the training rows
-   (``discovery_cv``; cross-validation is the complexity penalty: held-out error rises when an
-   extra parameter fits noise). The validation rows take no part in fitting, ranking or the
-   decision.
-5. **Decide**: the best-ranked candidate is named only when it beats the starting model's
-   cross-validated error *and* its training-error improvement is significant against the noise:
-   an F test (noise variance from the extended model's residuals) at alpha / (number of
-   candidates) (Bonferroni: the winner was selected among them). Otherwise no missing effect
-   is reported. The before/after table is the validation rows' error of the calibrated starting
-   model and of the model with the named effect.
+1. **Calibrate the starting model** on the training rows (``space.BASE_FREE``, least squares,
+   optionally after a short differential evolution) at the screening resolution
+   (``config.screen_nodes``, 150 nodes), then polish it at the material's own resolution.
+   Optionally robust (``config.huber_c``: Huber's loss, ``robust``).
+2. **Screen** every library effect at the screening resolution: its sensitivity signature and
+   the part recalibration cannot absorb (``signature``), a refit of all coefficients and the
+   effect (``fit.fit_effect``), and a cross-validation with one-step fold refits.
+3. **Refine the leaders**: the ``config.refine`` best-screened candidates are polished and
+   cross-validated (``cv``) at full resolution. The starting model is re-polished from the
+   coefficients of every leader that would pass the F test (``fit.equal_footing``): both sides
+   of the nested comparison are fitted equally well, so an effect at zero strength cannot look
+   significant.
+4. **Decide**: the best-ranked candidate passes when it lowers the starting model's
+   cross-validated error, its F test against the equally polished starting model gives p <
+   alpha / (number of candidates), and its strength is not zero. Other leaders whose held-out
+   losses are within the noise of it (``cv.within_noise``) make the verdict
+   "indistinguishable" (none is named). A passing effect is named only if it shrinks the
+   systematic part (``residuals.smooth_split``) of every systematic keypoint it claims (those
+   whose unabsorbed signature correlates positively with the residuals).
+5. **Report** the residual tests before and after (``residuals``; a systematic residual left
+   is "an unexplained residual"), the estimated noise floor and the share of the systematic
+   residual explained, and the next samples (``proposal``) that best separate the leading
+   models. The validation rows take no part in fitting, ranking or the decision.
 """
 from __future__ import annotations
 
@@ -33,11 +37,18 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.params import Material
-from stitchswitch.validation.discovery.cv import cross_validate, f_test, fold_labels, sign_flip_test
+from stitchswitch.validation.discovery.cv import (
+    cross_validate,
+    f_test,
+    fold_labels,
+    sign_flip_test,
+    within_noise,
+)
 from stitchswitch.validation.discovery.effects import LIBRARY, get_effect
 from stitchswitch.validation.discovery.evaluate import Evaluator
-from stitchswitch.validation.discovery.fit import fit, fit_effect, jacobian
+from stitchswitch.validation.discovery.fit import equal_footing, fit, fit_effect, jacobian
 from stitchswitch.validation.discovery.residuals import residual_analysis
+from stitchswitch.validation.discovery.robust import winsorize
 from stitchswitch.validation.discovery.signature import explain, signature
 from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
 from stitchswitch.validation.measured import QUANTITIES, MeasuredData
@@ -53,7 +64,15 @@ class DiscoveryConfig:
     ``de_generations``: differential-evolution generations before the starting model's least
     squares (0: least squares from the starting material only), population ``de_popsize``.
     ``fit_max_nfev`` / ``cv_max_nfev``: least-squares steps of a full fit / of a fold refit.
-    ``scan_points``: magnitudes of the strength scan. ``permutations``: of the residual test."""
+    ``scan_points``: magnitudes of the strength scan. ``permutations``: of the residual test.
+    ``screen_nodes``: the resolution (nodes) at which every candidate is screened (fitted with
+    at most ``screen_max_nfev`` steps and cross-validated with one-step fold refits) before the
+    ``refine`` best are polished (``polish_max_nfev`` steps) and cross-validated
+    (``cv_max_nfev``) at the starting material's own resolution (None: no screening).
+    ``propose``: how many next samples to propose. ``huber_c``: a robust fit (Huber's loss with
+    threshold ``huber_c`` robust sigmas, ``discovery.robust``); None: least squares. ``forward``:
+    when a named effect leaves a systematic residual, try a second effect (forward selection
+    with the same rule, at alpha / (number of candidates left))."""
 
     effects: tuple | None = None
     folds: int = 5
@@ -65,6 +84,13 @@ class DiscoveryConfig:
     cv_max_nfev: int = 3
     scan_points: int = 5
     permutations: int = 2000
+    screen_nodes: int | None = 150
+    screen_max_nfev: int = 12
+    refine: int = 3
+    polish_max_nfev: int = 4
+    propose: int = 5
+    huber_c: float | None = None
+    forward: bool = True
 
     def __post_init__(self) -> None:
         names = tuple(self.effects) if self.effects is not None else tuple(LIBRARY)
@@ -77,9 +103,14 @@ class DiscoveryConfig:
         object.__setattr__(self, "effects", names)
         if not 0.0 < self.alpha < 1.0:
             raise InvalidInputError(f"alpha: {self.alpha!r} is outside (0, 1)")
-        for name in ("folds", "fit_max_nfev", "cv_max_nfev", "scan_points", "permutations"):
-            if int(getattr(self, name)) < (2 if name == "folds" else 1):
+        for name in ("folds", "fit_max_nfev", "cv_max_nfev", "scan_points", "permutations",
+                     "refine", "polish_max_nfev", "propose", "screen_max_nfev"):
+            if int(getattr(self, name)) < (2 if name == "folds" else 0 if name == "propose" else 1):
                 raise InvalidInputError(f"{name}: {getattr(self, name)!r} is too small")
+        if self.screen_nodes is not None and int(self.screen_nodes) < 20:
+            raise InvalidInputError(f"screen_nodes: {self.screen_nodes!r} is below 20")
+        if self.huber_c is not None and not self.huber_c > 0:
+            raise InvalidInputError(f"huber_c: {self.huber_c!r} must be > 0")
         if self.de_generations < 0:
             raise InvalidInputError(f"de_generations: {self.de_generations!r} must be >= 0")
 
@@ -115,6 +146,10 @@ class Candidate:
     spec: ModelSpec = field(repr=False, compare=False)
     x: np.ndarray = field(repr=False, compare=False)
     rank: int | None = None
+    resolution_nodes: int = 0
+    refined: bool = True
+    zero_strength: bool = False
+    row_loss: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     def as_dict(self) -> dict:
         return {"effect": self.effect, "score": self.cv_mse_mm2,
@@ -127,7 +162,8 @@ class Candidate:
                 "val_mae_before": dict(self.val_mae_before_mm),
                 "val_mae_after": dict(self.val_mae_after_mm), "signature": self.signature,
                 "uncertified_solves": self.uncertified_solves, "fit_start": self.fit_start,
-                "rank": self.rank}
+                "rank": self.rank, "resolution_nodes": self.resolution_nodes,
+                "refined": self.refined, "zero_strength": self.zero_strength}
 
 
 @dataclass(frozen=True)
@@ -155,7 +191,7 @@ class Discovery:
 
 def stage_count(config: DiscoveryConfig) -> int:
     """Number of progress stages of ``discover`` (for a progress bar)."""
-    return 3 + 2 * len(config.effects)
+    return 5 + 2 * len(config.effects)
 
 
 def _metrics(pred, measured) -> dict:
@@ -164,15 +200,96 @@ def _metrics(pred, measured) -> dict:
 
 
 def _start_fit(base, ev, designs, measured, start, config, executor):
-    x0 = base.encode(start)
+    x0 = base.encode(base.start)
     if config.de_generations > 0:
         from stitchswitch.reduced.calibration.evolution import calibrate
 
-        res = calibrate(designs, measured, start, maxiter=config.de_generations,
+        res = calibrate(designs, measured, base.start, maxiter=config.de_generations,
                         popsize=config.de_popsize, seed=config.seed, executor=executor,
                         free=base.free, check_identifiability=False)
         x0 = base.encode(res.material)
     return fit(base, ev, designs, measured, x0, max_nfev=config.fit_max_nfev)
+
+
+def _screen_spec(start: Material, nodes) -> ModelSpec:
+    from stitchswitch.reduced.calibration.evolution import search_material
+
+    return ModelSpec(search_material(start, nodes) if nodes else start, None, BASE_FREE)
+
+
+def _zero(spec, x) -> bool:
+    """Is the effect of ``x`` at (numerically) zero strength: the starting model itself?"""
+    values = spec.decode(x)[1].get(spec.effect, ())
+    return all(abs(v) <= 1e-6 * p.probe for v, p in zip(values, spec.effect_parameters))
+
+
+def _candidate(name, spec, f, m_tr, cv, cv0, why, how, rss0, k0, m, config, ev, d_va, m_va,
+               before_va, refined):
+    """The ``Candidate`` of fit ``f`` (with its cross-validation ``cv``) against the starting
+    model's RSS ``rss0`` and cross-validation ``cv0``."""
+    n_res = m_tr.size
+    rss1 = float(np.sum((f.predictions - m_tr) ** 2))
+    F, p = f_test(rss0, rss1, n_res, k0, spec.size)
+    zero = _zero(spec, f.x)
+    pred_va = ev.one(spec, f.x, d_va)
+    return Candidate(
+        effect=name, cv_mse_mm2=cv.score_mm2, cv_improvement_mm2=cv0.score_mm2 - cv.score_mm2,
+        cv_sign_flip_p=sign_flip_test(cv0.row_loss - cv.row_loss, seed=config.seed),
+        train_mse_mm2=f.mse_mm2, f_statistic=F, p_value=p,
+        significant=bool(refined and not zero and p < config.alpha / m
+                         and cv.score_mm2 < cv0.score_mm2),
+        n_parameters=spec.size, parameters=dict(f.parameters),
+        effect_parameters=dict(zip(spec.names[spec.offset:], spec.decode(f.x)[1].get(
+            name, (0.0,) * len(spec.effect_parameters)))),
+        val_mae_before_mm={q: v["mae_mm"] for q, v in _metrics(before_va, m_va).items()},
+        val_mae_after_mm={q: v["mae_mm"] for q, v in _metrics(pred_va, m_va).items()},
+        signature=why, uncertified_solves=f.uncertified, fit_start=how,
+        spec=spec, x=f.x, resolution_nodes=spec.start.n_nodes, refined=refined,
+        zero_strength=zero, row_loss=cv.row_loss)
+
+
+def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
+    """The best second effect after ``first`` (a refined ``Candidate``): every other effect
+    screened on top of ``first_screen`` (its screening-resolution fit), the best one polished
+    at full resolution and tested against the model with ``first`` re-polished on equal
+    footing (F test at alpha / (number of candidates left), CV below it, non-zero)."""
+    from stitchswitch.validation.discovery.fit import Fit
+
+    rss = lambda f: float(np.sum((f.predictions - m_fit) ** 2))      # noqa: E731
+    base_c = first_screen.spec
+    J = jacobian(base_c, ev, d_tr, first_screen.x, *base_c.bounds())
+    best = None
+    for name in config.effects:
+        if name == first.effect:
+            continue
+        spec = base_c.then(name)
+        sig = signature(spec, ev, d_tr, first_screen.x)
+        f, _ = fit_effect(spec, ev, d_tr, m_fit, first_screen, J, sig,
+                          max_nfev=config.screen_max_nfev, scan_points=config.scan_points + 2,
+                          refine_both=True)
+        cv = cross_validate(spec, ev, d_tr, m_fit, f.x, labels, max_nfev=1)
+        if best is None or cv.score_mm2 < best[2]:
+            best = (name, f, cv.score_mm2)
+    name, fc, _ = best
+    base_f = first.spec
+    pred_a = ev.one(base_f, first.x, d_tr)
+    fit_a = Fit(base_f, first.x, pred_a, float(np.mean((pred_a - m_fit) ** 2)), 0, 0, "first")
+    spec_f = base_f.then(name)
+    ff = fit(spec_f, ev, d_tr, m_fit, fc.x, max_nfev=config.polish_max_nfev)
+    m_left = len(config.effects) - 1
+    threshold = config.alpha / m_left
+    passes = lambda r0, f: f_test(r0, rss(f), m_fit.size, base_f.size, f.spec.size)[1] < threshold  # noqa: E731
+    fit_a, _ = equal_footing(base_f, ev, d_tr, m_fit, fit_a, {name: ff}, passes,
+                             max_nfev=config.fit_max_nfev)
+    cv_a = cross_validate(base_f, ev, d_tr, m_fit, fit_a.x, labels, max_nfev=config.cv_max_nfev)
+    cv_f = cross_validate(spec_f, ev, d_tr, m_fit, ff.x, labels, max_nfev=config.cv_max_nfev)
+    F, p = f_test(rss(fit_a), rss(ff), m_fit.size, base_f.size, spec_f.size)
+    zero = _zero(spec_f, ff.x)
+    return {"effect": name, "after": first.effect, "f_statistic": F, "p_value": p,
+            "threshold": threshold, "cv_mse_mm2": cv_f.score_mm2,
+            "cv_mse_first_only_mm2": cv_a.score_mm2, "zero_strength": zero,
+            "significant": bool(p < threshold and cv_f.score_mm2 < cv_a.score_mm2 and not zero),
+            "parameters": spec_f.describe(ff.x), "spec": spec_f, "x": ff.x}
 
 
 def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = DiscoveryConfig(), *,
@@ -180,6 +297,9 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     """Run the workflow on ``data`` from the starting material ``start``; see the module
     docstring. ``executor``: a map-like for parallel solves. ``progress(message, stage,
     total)`` is called as each stage starts."""
+    from stitchswitch.validation.discovery.proposal import design_grid, predictions, propose
+    from stitchswitch.validation.discovery.residuals import smooth_split
+
     t0 = time.perf_counter()
     total = stage_count(config)
     stage = [0]
@@ -199,100 +319,225 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     d_tr = [x for x, t in zip(designs, tr) if t]
     d_va = [x for x, t in zip(designs, va) if t]
     m_tr, m_va = measured[tr], measured[va]
+    train_rows = [r for r, t in zip(rows, tr) if t]
     n_res = m_tr.size
     ev = Evaluator(executor)
-
-    # 1. the starting model, calibrated
-    step("calibrating the starting model")
     base = ModelSpec(start, None, BASE_FREE)
-    fb = _start_fit(base, ev, d_tr, m_tr, start, config, executor)
-    before = np.empty_like(measured)
-    before[tr] = fb.predictions
-    before[va] = ev.one(base, fb.x, d_va)
-    rss0 = float(np.sum((fb.predictions - m_tr) ** 2))
+    screen = _screen_spec(start, config.screen_nodes)
+    lo, hi = base.bounds()
+    labels = fold_labels(d_tr, config.folds, config.seed)
+    m = len(config.effects)
+    threshold = config.alpha / m
 
-    # 2. where is it wrong?
-    step("residual analysis and cross-validation of the starting model")
+    # 1. the starting model, calibrated: searched at the screening resolution, polished
+    step("calibrating the starting model")
+    fs = _start_fit(screen, ev, d_tr, m_tr, start, config, executor)
+    m_fit, weights = m_tr, np.ones_like(m_tr)
+    if config.huber_c:
+        for _ in range(3):          # alternate clipping and refitting (converges to Huber's fit)
+            m_fit, weights, _scale = winsorize(m_tr, fs.predictions, config.huber_c)
+            fs = fit(screen, ev, d_tr, m_fit, fs.x, max_nfev=config.polish_max_nfev)
+    fb = fit(base, ev, d_tr, m_fit, fs.x, max_nfev=config.polish_max_nfev) if screen != base else fs
+
+    # 2-3. screening: every candidate's signature, refit and cross-validation at the screening
+    # resolution, from the screened starting model
+    step("screening: the starting model's Jacobian and cross-validation")
+    J0s = jacobian(screen, ev, d_tr, fs.x, lo, hi)
+    cv0s = cross_validate(screen, ev, d_tr, m_fit, fs.x, labels, max_nfev=1)
+    rss0s = float(np.sum((fs.predictions - m_fit) ** 2))
+    before_va_s = ev.one(screen, fs.x, d_va)
+    screened, sigs, screened_fit = {}, {}, {}
+    for name in config.effects:
+        spec = screen.with_effect(name)
+        step(f"{name}: signature and refit")
+        sig = signature(spec, ev, designs, fs.x)
+        why = explain(J0s, sig[tr], m_fit - fs.predictions, QUANTITIES)
+        sigs[name] = {"per_unit": sig, "pattern": why.pop("pattern")}
+        f, how = fit_effect(spec, ev, d_tr, m_fit, fs, J0s, sig[tr],
+                            max_nfev=config.screen_max_nfev, scan_points=config.scan_points)
+        step(f"{name}: cross-validation")
+        cv = cross_validate(spec, ev, d_tr, m_fit, f.x, labels, max_nfev=1)
+        screened[name] = _candidate(name, spec, f, m_fit, cv, cv0s, why, how["start"], rss0s,
+                                    base.size, m, config, ev, d_va, m_va, before_va_s,
+                                    refined=screen == base)
+        screened_fit[name] = f
+    order = sorted(screened.values(), key=lambda c: (c.cv_mse_mm2, c.n_parameters, c.effect))
+    leaders = [c.effect for c in order[:config.refine]]
+
+    # 4. the leaders at full resolution; the starting model re-polished from every start an
+    # apparently significant leader had, so that both sides of the test are fitted equally well
+    step("refining the leading candidates at full resolution")
+    refined_fits = {}
+    for name in leaders:
+        spec = base.with_effect(name)
+        if screen != base:
+            f = fit(spec, ev, d_tr, m_fit, screened_fit[name].x, max_nfev=config.polish_max_nfev)
+        else:
+            f = screened_fit[name]
+        refined_fits[name] = f
+    def passes(rss0, f):
+        rss1 = float(np.sum((f.predictions - m_fit) ** 2))
+        return f_test(rss0, rss1, n_res, base.size, f.spec.size)[1] < threshold
+
+    base_fit, repolished = equal_footing(base, ev, d_tr, m_fit, fb, refined_fits, passes,
+                                         max_nfev=config.fit_max_nfev)
+    rss0 = float(np.sum((base_fit.predictions - m_fit) ** 2))
+    cv0 = cross_validate(base, ev, d_tr, m_fit, base_fit.x, labels, max_nfev=config.cv_max_nfev)
+    before = np.empty_like(measured)
+    before[tr] = base_fit.predictions
+    before[va] = ev.one(base, base_fit.x, d_va)
+    final = {}
+    for name in leaders:
+        f = refined_fits[name]
+        if f.mse_mm2 > base_fit.mse_mm2:      # the effect cannot beat the starting model
+            x0 = f.spec.extend(base_fit.x, (0.0,) * len(f.spec.effect_parameters))
+            pred = ev.one(f.spec, x0, d_tr)
+            f = type(f)(f.spec, x0, pred, float(np.mean((pred - m_fit) ** 2)), f.evaluations,
+                        ev.n_uncertified(f.spec, x0, d_tr), "no improvement over the starting model")
+        cvr = cross_validate(f.spec, ev, d_tr, m_fit, f.x, labels, max_nfev=config.cv_max_nfev)
+        c = screened[name]
+        final[name] = _candidate(name, f.spec, f, m_fit, cvr, cv0, c.signature,
+                                 c.fit_start, rss0, base.size, m, config, ev, d_va, m_va,
+                                 before[va], refined=True)
+    rest = [replace(c, significant=False, refined=False) for c in order[config.refine:]]
+    full = sorted(final.values(), key=lambda c: (c.cv_mse_mm2, c.n_parameters, c.effect))
+    ranking = tuple(replace(c, rank=rank) for rank, c in enumerate(full + rest, start=1))
+
+    # 5. decide: named, indistinguishable, or none; the claims and what is left
+    step("decision, the validation gap and the next samples")
+    res0_tr = m_tr - base_fit.predictions
+    split0 = smooth_split(d_all[tr], p_all[tr], res0_tr)
     res_before = residual_analysis(d_all, p_all, measured - before, QUANTITIES,
                                    alpha=config.alpha, permutations=config.permutations,
                                    seed=config.seed)
-    labels = fold_labels(d_tr, config.folds, config.seed)
-    cv0 = cross_validate(base, ev, d_tr, m_tr, fb.x, labels, max_nfev=config.cv_max_nfev)
-    J0 = jacobian(base, ev, d_tr, fb.x, *base.bounds())
-
-    # 3-4. every candidate: signature, refit, cross-validation
-    m = len(config.effects)
-    candidates, sigs = [], {}
-    for name in config.effects:
-        spec = base.with_effect(name)
-        step(f"{name}: signature and refit")
-        sig = signature(spec, ev, designs, fb.x)
-        why = explain(J0, sig[tr], m_tr - fb.predictions, QUANTITIES)
-        sigs[name] = {"per_unit": sig, "pattern": why.pop("pattern")}
-        f, how = fit_effect(spec, ev, d_tr, m_tr, fb, J0, sig[tr], max_nfev=config.fit_max_nfev,
-                            scan_points=config.scan_points)
-        step(f"{name}: cross-validation")
-        cv = cross_validate(spec, ev, d_tr, m_tr, f.x, labels, max_nfev=config.cv_max_nfev)
-        rss1 = float(np.sum((f.predictions - m_tr) ** 2))
-        F, p = f_test(rss0, rss1, n_res, base.size, spec.size)
-        pred_va = ev.one(spec, f.x, d_va)
-        candidates.append(Candidate(
-            effect=name,
-            cv_mse_mm2=cv.score_mm2,
-            cv_improvement_mm2=cv0.score_mm2 - cv.score_mm2,
-            cv_sign_flip_p=sign_flip_test(cv0.row_loss - cv.row_loss, seed=config.seed),
-            train_mse_mm2=f.mse_mm2,
-            f_statistic=F, p_value=p,
-            significant=bool(p < config.alpha / m and cv.score_mm2 < cv0.score_mm2),
-            n_parameters=spec.size,
-            parameters=dict(f.parameters),
-            effect_parameters=dict(zip(spec.names[len(base.free):], spec.decode(f.x)[1][name])),
-            val_mae_before_mm={q: v["mae_mm"] for q, v in _metrics(before[va], m_va).items()},
-            val_mae_after_mm={q: v["mae_mm"] for q, v in _metrics(pred_va, m_va).items()},
-            signature=why,
-            uncertified_solves=f.uncertified,
-            fit_start=how["start"],
-            spec=spec, x=f.x))
-    ranking = tuple(replace(c, rank=rank) for rank, c in enumerate(
-        sorted(candidates, key=lambda c: (c.cv_mse_mm2, c.n_parameters, c.effect)), start=1))
-
-    # 5. decide, add the winner, show the gap
-    step("decision and the validation gap")
     top = ranking[0]
-    winner = top if top.significant else None
+    group = []
+    if top.significant:
+        others = {c.effect: c.row_loss for c in ranking[1:]
+                  if c.refined and not c.zero_strength and c.cv_mse_mm2 < cv0.score_mm2}
+        close = within_noise(top.row_loss, others, config.alpha, config.seed)
+        group = [top] + [c for c in ranking[1:] if c.effect in close]
+    chosen = top if top.significant else None
     after = before.copy()
-    if winner:
-        after[tr] = ev.one(winner.spec, winner.x, d_tr)
-        after[va] = ev.one(winner.spec, winner.x, d_va)
+    if chosen:
+        after[tr] = ev.one(chosen.spec, chosen.x, d_tr)
+        after[va] = ev.one(chosen.spec, chosen.x, d_va)
+    split1 = smooth_split(d_all[tr], p_all[tr], m_tr - after[tr])
     res_after = residual_analysis(d_all, p_all, measured - after, QUANTITIES, alpha=config.alpha,
                                   permutations=config.permutations, seed=config.seed)
-    threshold = config.alpha / m
-    if winner:
+    systematic_before = [q for q in QUANTITIES if res_before[q]["systematic"]]
+    claims, unshrunk = [], []
+    if chosen:
+        per_q = chosen.signature["per_quantity"]
+        claims = [q for q in systematic_before if per_q[q] > 0] or systematic_before
+        k_of = {q: k for k, q in enumerate(QUANTITIES)}
+        unshrunk = [q for q in claims if split1["systematic_rms_mm"][k_of[q]]
+                    >= split0["systematic_rms_mm"][k_of[q]]]
+    left = [q for q in QUANTITIES if res_after[q]["systematic"]]
+    e0, e1 = sum(split0["systematic_energy_mm2"]), sum(split1["systematic_energy_mm2"])
+    explained = (1.0 - e1 / e0) if e0 > 0 else None
+    names = [c.effect for c in group]
+    if chosen and unshrunk:
+        verdict = "none"
+        reason = (f"{top.effect} lowers the cross-validated error and its improvement is "
+                  f"significant (p = {top.p_value:.2g} < {threshold:.2g}), but it does not "
+                  f"shrink the systematic residual of {', '.join(unshrunk)}, which it claims "
+                  "to explain: no effect is named")
+    elif chosen and len(group) > 1:
+        verdict = "indistinguishable"
+        reason = (f"{', '.join(names)} explain the residual about equally: their cross-validated "
+                  f"errors ({', '.join(f'{c.cv_mse_mm2:.3f}' for c in group)} mm^2) are within "
+                  f"the noise of one another (sign-flip test of the per-row held-out losses, "
+                  f"p >= {config.alpha:g}); the data cannot tell them apart (the proposed "
+                  "samples below would)")
+    elif chosen:
+        verdict = "named"
         reason = (f"{top.effect} has the lowest cross-validated error ({top.cv_mse_mm2:.3f} "
                   f"against {cv0.score_mm2:.3f} mm^2 for the starting model) and its improvement "
-                  f"is significant: F = {top.f_statistic:.1f}, p = {top.p_value:.2g} < "
-                  f"{threshold:.2g} (alpha {config.alpha:g} / {m} candidates)")
+                  f"is significant against the starting model fitted equally well: "
+                  f"F = {top.f_statistic:.1f}, p = {top.p_value:.2g} < {threshold:.2g} "
+                  f"(alpha {config.alpha:g} / {m} candidates)")
+    elif top.zero_strength:
+        verdict = "none"
+        reason = (f"the best candidate, {top.effect}, is fitted at zero strength: it is the "
+                  "starting model itself")
     elif top.cv_mse_mm2 >= cv0.score_mm2:
+        verdict = "none"
         reason = (f"no candidate lowers the cross-validated error of the starting model "
                   f"({cv0.score_mm2:.3f} mm^2; best {top.effect} {top.cv_mse_mm2:.3f})")
     else:
+        verdict = "none"
         reason = (f"the best candidate, {top.effect}, lowers the cross-validated error "
                   f"({top.cv_mse_mm2:.3f} against {cv0.score_mm2:.3f} mm^2) but not "
-                  f"significantly: p = {top.p_value:.2g} >= {threshold:.2g}")
+                  f"significantly against the starting model fitted equally well: "
+                  f"p = {top.p_value:.2g} >= {threshold:.2g}")
+    second = None
+    if verdict == "named" and left and config.forward and len(config.effects) > 1:
+        step(f"forward selection: a second effect after {chosen.effect}")
+        second = _forward(chosen, screened_fit[chosen.effect], ev, d_tr, m_fit, labels, config)
+        if second["significant"]:
+            after[tr] = ev.one(second["spec"], second["x"], d_tr)
+            after[va] = ev.one(second["spec"], second["x"], d_va)
+            split1 = smooth_split(d_all[tr], p_all[tr], m_tr - after[tr])
+            res_after = residual_analysis(d_all, p_all, measured - after, QUANTITIES,
+                                          alpha=config.alpha, permutations=config.permutations,
+                                          seed=config.seed)
+            left = [q for q in QUANTITIES if res_after[q]["systematic"]]
+            e1 = sum(split1["systematic_energy_mm2"])
+            explained = (1.0 - e1 / e0) if e0 > 0 else None
+            reason += (f"; forward selection adds {second['effect']} (p = {second['p_value']:.2g}"
+                       f" < {second['threshold']:.2g} against the model with {chosen.effect})")
+        else:
+            reason += (f"; forward selection: no significant second effect (best "
+                       f"{second['effect']}, p = {second['p_value']:.2g})")
+    if verdict != "named" and verdict != "indistinguishable":
+        chosen = None
+        after = before.copy()
+        res_after, split1, left, explained = res_before, split0, list(systematic_before), 0.0
+    # the next samples: what separates the leading models
+    lead = group if len(group) > 1 else [c for c in ranking if c.refined
+                                         and not c.zero_strength][:2]
+    models = [("starting model", base, base_fit.x)] * (len(group) <= 1)
+    models = list(models) + [(c.effect, c.spec, c.x) for c in lead]
+    grid = design_grid()
+    sigma = split0["noise_sigma_mm"]
+    proposal = propose(predictions(ev, models, grid), grid, sigma, config.propose)
     summary = {
-        "missing_effect": winner.effect if winner else None,
-        "significant": bool(winner),
-        "effect_parameters": dict(winner.effect_parameters) if winner else {},
+        "missing_effect": chosen.effect if verdict == "named" else None,
+        "missing_effects": ([chosen.effect] + ([second["effect"]] if second and
+                                               second["significant"] else []))
+        if verdict == "named" else [],
+        "forward": None if second is None else {
+            k: v for k, v in second.items() if k not in ("spec", "x")},
+        "verdict": verdict,
+        "significant": verdict == "named",
+        "indistinguishable": names if verdict == "indistinguishable" else [],
+        "effect_parameters": dict(chosen.effect_parameters) if verdict == "named" else {},
+        "after_model": chosen.effect if chosen else None,
         "decision": reason,
         "ranking": [c.as_dict() for c in ranking],
         "before": _metrics(before[va], m_va),
         "after": _metrics(after[va], m_va),
         "starting_model": {
             "label": start_label, "free": list(base.free),
-            "parameters": fb.parameters, "train_mse_mm2": fb.mse_mm2,
-            "cv_score_mm2": cv0.score_mm2, "uncertified_solves": fb.uncertified},
+            "parameters": base_fit.parameters, "train_mse_mm2": base_fit.mse_mm2,
+            "cv_score_mm2": cv0.score_mm2, "uncertified_solves": base_fit.uncertified,
+            "screened_train_mse_mm2": fs.mse_mm2, "repolished": repolished},
         "residuals_before": res_before,
         "residuals_after": res_after,
+        "claims": {"keypoints": claims, "not_shrunk": unshrunk},
+        "robust": {"huber_c": config.huber_c, "down_weighted": [
+            {"sample": train_rows[i].label, "quantity": QUANTITIES[k],
+             "weight": float(weights[i, k])}
+            for i, k in zip(*np.nonzero(weights < 1.0))]},
+        "unexplained_residual": left,
+        "noise_floor": {"sigma_mm": dict(zip(QUANTITIES, sigma)),
+                        "how": "residual standard error of a quadratic surface in (d, p) fitted "
+                               "to the starting model's training residuals (no replicates)"},
+        "systematic": {"before_rms_mm": dict(zip(QUANTITIES, split0["systematic_rms_mm"])),
+                       "after_rms_mm": dict(zip(QUANTITIES, split1["systematic_rms_mm"])),
+                       "share_explained": explained},
+        "proposal": proposal,
         "significance_threshold": threshold,
         "n_train": int(tr.sum()), "n_val": int(va.sum()),
         "config": config.as_dict(),
@@ -300,5 +545,3 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     return Discovery(summary=summary, ranking=ranking, diameter_mm=d_all, fill=p_all, split=split,
                      measured=measured, before=before, after=after, signatures=sigs,
                      elapsed_s=time.perf_counter() - t0, solves=ev.calls)
-
-
