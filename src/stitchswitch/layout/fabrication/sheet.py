@@ -77,6 +77,9 @@ def _hooping_lines(h: HoopingDoc, mode: str, esc=str) -> list[str]:
     lines.append(f"- {h.stitches} stitches, {h.trims} trims, {h.colour_changes} colour "
                  f"change(s), {h.thread_length_m:.2f} m of top thread, about "
                  f"{_f(h.time_min)} min")
+    if h.gap_crossings:
+        lines.append(f"- {h.gap_crossings} thread crossing(s) over unstitched fabric "
+                     f"({h.gap_crossing_mm:.1f} mm of thread): clip them after stitching")
     return lines
 
 
