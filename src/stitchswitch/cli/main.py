@@ -29,6 +29,8 @@ COMMANDS = {
     "fabricate": "design.fabricate:fabricate_cmd",
     "import": "design.import_cmd:import_cmd",
     "place": "design.place:place",
+    "edit": "design.edit:edit",
+    "remove": "design.edit:remove",
     "check": "design.check:check",
     "preview": "design.preview:preview",
 }

@@ -162,7 +162,10 @@ class Design(_ArrayEq):
         for p in self.patches:
             if p.id == patch_id:
                 return p
-        raise InvalidInputError(f"no patch with id {patch_id!r}")
+        ids = [p.id for p in self.patches]
+        listed = ", ".join(ids[:20]) + (", ..." if len(ids) > 20 else "")
+        raise InvalidInputError(f"no patch with id {patch_id!r}; the patches are "
+                                + (listed or "(none)"))
 
     def with_patches(self, patches) -> "Design":
         """A copy with the patch list replaced (not validated: ``design_io.validate`` does)."""
