@@ -48,7 +48,7 @@ def test_numpy_warnings_go_to_the_logger(tmp_path):
 
 def test_quiet_hides_progress(tmp_path):
     args = ("-m", "stitchswitch", "{q}", "precompute", "--diameters", "30:31:1", "--fills",
-            "0.8:0.81:0.01", "--workers", "1", "--out", "m.npz")
+            "0.8:0.81:0.01", "--workers", "1", "-o", "m.npz")
     loud = run(*[a.replace("{q}", "-v") for a in args], cwd=tmp_path)
     assert loud.returncode == 0 and "solving 2 x 2 designs" in loud.stderr
     quiet = run(*[a.replace("{q}", "-q") for a in args], cwd=tmp_path)

@@ -59,7 +59,7 @@ def edit(design, patch_id, at, diameter_mm, fill, piece, output):
 @click.argument("patch_ids", metavar="ID...", nargs=-1, required=True)
 @_OUTPUT
 def remove(design, patch_ids, output):
-    """Remove the patches ID... from DESIGN; every other patch keeps its id."""
+    """Remove patches from DESIGN by id; every other patch keeps its id."""
     d = load_design(design)
     new = remove_patches(d, patch_ids)
     target = _save(new, design, output)

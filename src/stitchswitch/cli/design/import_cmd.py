@@ -30,9 +30,9 @@ def _rectangle(text: str) -> tuple[float, float]:
 @click.argument("pattern", required=False, type=click.Path(dir_okay=False))
 @click.option("--rectangle", default=None, metavar="WxH",
               help="Instead of a pattern: one rectangular piece, WIDTHxHEIGHT in mm.")
-@click.option("--name", default="rectangle", show_default=True,
+@click.option("--name", default="rectangle", show_default=True, metavar="NAME",
               help="Name of the --rectangle piece.")
-@click.option("--size", default=None, help="The pattern size to import (required when the "
+@click.option("--size", default=None, metavar="SIZE", help="The pattern size to import (required when the "
                                            "file has several).")
 @click.option("--pieces", default=None, metavar="NAME,...",
               help="Only these pieces (default: every piece of the size).")

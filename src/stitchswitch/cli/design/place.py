@@ -45,12 +45,13 @@ def _grid(text: str) -> tuple[int, int]:
 
 @click.command(cls=options.Command)
 @click.argument("design", type=click.Path(dir_okay=False))
-@click.option("--piece", required=True, help="The piece to place the patches on.")
+@click.option("--piece", required=True, metavar="NAME", help="The piece to place the patches on.")
 @click.option("--at", "at", default=None, metavar="X,Y", help="One patch centred at X,Y (mm).")
 @click.option("--grid", default=None, metavar="ROWSxCOLS",
               help=f"A grid of patches (--pitch): at most {GRID_MAX_SIDE} a side, {GRID_MAX_PATCHES} in all.")
-@click.option("--centre", default=None, metavar="X,Y",
-              help="Centre of the --grid (default: the piece's centroid).")
+@click.option("--center", "centre", default=None, metavar="X,Y",
+              help="Center of the --grid, garment mm [default: the piece's centroid].")
+@options.deprecated_alias("--centre", "--center")("centre_old")
 @click.option("--along", default=None, metavar="X,Y;X,Y;...",
               help="Patches every --pitch mm along this polyline, from its first point.")
 @click.option("--pitch", "pitch_mm", type=options.FINITE_FLOAT, default=None, metavar="MM",
@@ -73,16 +74,18 @@ def _grid(text: str) -> tuple[int, int]:
               help="Conductive triangles: index:I,J | ring:K,.. | annulus:IN:OUT | polygon:...")
 @click.option("--state", type=click.Choice(STATES), default="up", show_default=True,
               help="The stable state shown in previews.")
-@click.option("--id-prefix", default="p", show_default=True,
+@click.option("--id-prefix", default="p", show_default=True, metavar="PREFIX",
               help="New ids are PREFIX1, PREFIX2, ... after the largest in use.")
 @click.option("--output", "-o", type=options.OutputFile(as_str=True), default=None, metavar="FILE",
-              help="Write the result here (default: update DESIGN in place, atomically).")
-def place(design, piece, at, grid, centre, along, pitch_mm, diameter_mm, fill, height_mm,
+              help="Write the result here [default: update DESIGN in place, atomically].")
+def place(design, piece, at, grid, centre, centre_old, along, pitch_mm, diameter_mm, fill, height_mm,
           radius_mm, max_diameter_mm, min_fill, conductive, state, id_prefix, output):
     """Add patches to the DESIGN file on one piece. Positions are garment mm on the relaxed
     fabric (the piece outline's coordinates). Prints each new patch's predicted height and
     footprint and a Warning: line for every check rule it breaks (exit 0); a centre off the
     piece or a diameter outside the model's range exits 2 and adds nothing."""
+    if centre_old is not None:
+        centre = options.one_of(centre, centre_old, "--center", "--centre")
     modes = [m for m, v in (("--at", at), ("--grid", grid), ("--along", along)) if v is not None]
     if len(modes) != 1:
         raise InvalidInputError("give exactly one of --at X,Y, --grid ROWSxCOLS or --along "
@@ -92,7 +95,7 @@ def place(design, piece, at, grid, centre, along, pitch_mm, diameter_mm, fill, h
     if at and pitch_mm is not None:
         raise InvalidInputError("--pitch applies to --grid and --along only")
     if centre and not grid:
-        raise InvalidInputError("--centre applies to --grid only")
+        raise InvalidInputError("--center applies to --grid only")
     inverse_opts = {"--radius": radius_mm, "--max-diameter": max_diameter_mm,
                     "--min-fill": min_fill}
     if height_mm is None:
@@ -121,7 +124,7 @@ def place(design, piece, at, grid, centre, along, pitch_mm, diameter_mm, fill, h
     elif at:
         d = place_at(d, piece, _numbers(at, "--at", 2), diameter_mm, fill, **extra)
     elif grid:
-        c = _numbers(centre, "--centre", 2) if centre else None
+        c = _numbers(centre, "--center", 2) if centre else None
         d = place_grid(d, piece, *_grid(grid), pitch_mm, diameter_mm, fill, centre_mm=c, **extra)
     else:
         pts = [_numbers(p, "--along point", 2) for p in along.split(";") if p.strip()]

@@ -27,6 +27,7 @@ def for_machine(**kwargs):
 @click.option("--force-range", type=(options.FINITE_FLOAT, options.FINITE_FLOAT), default=None,
               metavar="LO HI", help="Allowed switching force window in N.")
 @click.option("--count", type=click.IntRange(min=1, max=50), default=5, show_default=True,
+              metavar="N",
               help="Number of alternative designs.")
 @options.material_opt
 @click.option("--map", "map_path", type=click.Path(dir_okay=False), default=None, metavar="FILE",
