@@ -30,6 +30,7 @@ COMMANDS = {
     "import": "design.import_cmd:import_cmd",
     "place": "design.place:place",
     "edit": "design.edit:edit",
+    "layout": "design.layout_cmd:layout_cmd",
     "remove": "design.edit:remove",
     "check": "design.check:check",
     "preview": "design.preview:preview",
@@ -40,7 +41,8 @@ COMMANDS = {
 #: ``COMMANDS`` named in no section is listed under "other" (so registering one needs no edit
 #: here).
 SECTIONS = {
-    "design": ("import", "place", "edit", "remove", "check", "preview", "inverse", "demo"),
+    "design": ("import", "place", "edit", "remove", "check", "layout", "preview", "inverse",
+               "demo"),
     "predict": ("simulate", "force", "sensitivity", "precompute"),
     "data": ("validate", "calibrate", "discover"),
     "fabricate": ("fabricate", "patch", "inspect"),

@@ -9,15 +9,29 @@ import click
 from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM
 
 
-def patch_rows(design, patches) -> list[tuple[str, str]]:
-    """One row per patch: centre, d and fill, predicted h and r_a, footprints (mm)."""
+def _profiles(design, patches) -> dict:
+    """Patch id -> predicted profile, for the patches inside the model's range."""
     from stitchswitch.preview3d.profiles import patch_profiles
 
-    material = design.material_object()
     lo, hi = DIAMETER_RANGE_MM
     inside = [p for p in patches if lo <= p.diameter_mm <= hi]
-    profiles = dict(zip((p.id for p in inside), patch_profiles(
-        [p.diameter_mm for p in inside], [p.fill for p in inside], material))) if inside else {}
+    if not inside:
+        return {}
+    return dict(zip((p.id for p in inside), patch_profiles(
+        [p.diameter_mm for p in inside], [p.fill for p in inside], design.material_object())))
+
+
+def predicted_heights(design, patches) -> dict:
+    """Patch id -> predicted h (mm), None outside the model's range."""
+    profiles = _profiles(design, patches)
+    return {p.id: (profiles[p.id].keypoints.h_mm if p.id in profiles else None)
+            for p in patches}
+
+
+def patch_rows(design, patches) -> list[tuple[str, str]]:
+    """One row per patch: centre, d and fill, predicted h and r_a, footprints (mm)."""
+    material = design.material_object()
+    profiles = _profiles(design, patches)
     rows = []
     for p in patches:
         where = f"({p.centre_mm[0]:.2f}, {p.centre_mm[1]:.2f}) on {p.piece}"
