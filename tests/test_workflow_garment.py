@@ -5,8 +5,9 @@ import json
 
 from click.testing import CliRunner
 
-from helpers import EXTERNAL
 from stitchswitch.cli.main import cli
+
+from helpers import EXTERNAL
 
 TANK = EXTERNAL / "dxf" / "WM_LOOSE_SHAPE_TANK_AAMA.DXF"
 PIECE = "RELAXED TANK FR V2"

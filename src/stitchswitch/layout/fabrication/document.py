@@ -80,6 +80,8 @@ class HoopingFiles:
     embroidery: str
     png: str
     svg: str
+    template_a4: str | None = None       # garment mode: 1:1 printable templates (PDF)
+    template_letter: str | None = None
 
 
 @dataclass(frozen=True)

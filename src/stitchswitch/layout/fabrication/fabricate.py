@@ -53,6 +53,7 @@ from stitchswitch.layout.fabrication.layout_plot import alignment_marks, hooping
 from stitchswitch.layout.fabrication.order import StitchingOrder, order_hoopings
 from stitchswitch.layout.fabrication.plan import audit_hooping, plan_hooping
 from stitchswitch.layout.fabrication.sheet import html_page, markdown
+from stitchswitch.layout.fabrication.template import PAPERS, template_pdf
 
 GENERATOR = "stitchswitch fabricate"
 
@@ -193,6 +194,13 @@ def fabricate(design, outdir, options: FabricateOptions = FabricateOptions(),
         stem = f"hoop{k:0{width}d}"
         hplan = plan_hooping(h, specs, cached, prm)
         names = {"embroidery": f"{stem}.{fmt.name}", "png": f"{stem}.png", "svg": f"{stem}.svg"}
+        if h.piece is not None:                 # garment mode: the 1:1 templates
+            outline = design.piece(h.piece).outline_mm
+            for paper in PAPERS:
+                name = f"{stem}-template-{paper}.pdf"
+                names[f"template_{paper}"] = name
+                files[name] = template_pdf(k, h, outline, [specs[p] for p in h.patch_ids],
+                                           eta, paper)
         files[names["embroidery"]] = export.encode(hplan.plan, fmt.name, h.hoop,
                                                    label=_label(design, stem))
         threads = audit_hooping(hplan, h, options.resolution_mm, prm.min_stitch_mm)
