@@ -50,4 +50,7 @@ def test_tank_workflow(tmp_path):
     assert sorted(p["id"] for h in doc["hoopings"] for p in h["patches"]) == \
         ["pocket1", "pocket2", "pocket3"]
     assert any("uncut blank reaching 30 mm" in s for s in doc["stretch"]["instructions"])
+    for h in doc["hoopings"]:                       # the 1:1 printable templates
+        for key in ("template_a4", "template_letter"):
+            assert (out / h["files"][key]).read_bytes().startswith(b"%PDF")
     assert run("layout", design, "-o", tmp_path / "layout.pdf").exit_code == 0
