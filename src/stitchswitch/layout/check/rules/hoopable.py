@@ -6,7 +6,8 @@ on the fabric, so the frame clamps fabric all round.
 The fabric is the stretched piece (outline times eta), grown by the design's
 ``blank_margin_mm`` times eta when the pieces are hooped as uncut blanks. The search is the
 one fabrication runs for a patch no other placement holds (``best_placement``: a 2 mm grid over
-every position holding the patch, for every hoop and orientation), and fabrication's candidate
+every position holding the patch, for every hoop and orientation; ``can_hoop`` walks the same
+grid and stops at the first allowed position), and fabrication's candidate
 placements are built on the same ``hoop_region``, so ``check`` flags exactly the patches that
 ``fabricate`` refuses as unhoopable. A patch too large for every hoop is the ``hoop-fit``
 rule's, not this one's.
@@ -49,10 +50,9 @@ def allowed(region, cx, cy, ow, oh) -> np.ndarray:
     return np.asarray(shapely.contains(region, boxes), dtype=bool)
 
 
-def best_placement(i, x, y, r, hoops, region, step_mm: float = STEP_MM):
-    """The allowed placement holding disc i and the most others: (hoop index, orientation,
-    (cx, cy)), or None when no hoop can hold disc i on ``region``."""
-    best = None
+def _grid(i, x, y, r, hoops, region, step_mm):
+    """Per hoop and orientation that can hold disc i: (k, o, w, h, cx, cy, allowed mask) over
+    the 2 mm grid of field centres holding it."""
     for k, hoop in enumerate(hoops):
         for o in hoop.orientations:
             w, h = hoop.usable_mm(o)
@@ -63,15 +63,27 @@ def best_placement(i, x, y, r, hoops, region, step_mm: float = STEP_MM):
             gx = np.linspace(x[i] - sx, x[i] + sx, max(2, int(np.ceil(2 * sx / step_mm)) + 1))
             gy = np.linspace(y[i] - sy, y[i] + sy, max(2, int(np.ceil(2 * sy / step_mm)) + 1))
             cx, cy = (a.ravel() for a in np.meshgrid(gx, gy))
-            ok = allowed(region, cx, cy, ow, oh)
-            if not ok.any():
-                continue
-            cx, cy = cx[ok], cy[ok]
-            got = held(cx, cy, x, y, r, w, h)
-            j = int(np.argmax(got.sum(axis=1)))
-            score = (int(got[j].sum()), -hoop.area_mm2)
-            if best is None or score > best[0]:
-                best = (score, k, o, (float(cx[j]), float(cy[j])))
+            yield k, hoop, o, w, h, cx, cy, allowed(region, cx, cy, ow, oh)
+
+
+def can_hoop(i, x, y, r, hoops, region, step_mm: float = STEP_MM) -> bool:
+    """Whether ``best_placement`` finds a placement (the same grid; stops at the first)."""
+    return any(ok.any() for *_, ok in _grid(i, x, y, r, hoops, region, step_mm))
+
+
+def best_placement(i, x, y, r, hoops, region, step_mm: float = STEP_MM):
+    """The allowed placement holding disc i and the most others: (hoop index, orientation,
+    (cx, cy)), or None when no hoop can hold disc i on ``region``."""
+    best = None
+    for k, hoop, o, w, h, cx, cy, ok in _grid(i, x, y, r, hoops, region, step_mm):
+        if not ok.any():
+            continue
+        cx, cy = cx[ok], cy[ok]
+        got = held(cx, cy, x, y, r, w, h)
+        j = int(np.argmax(got.sum(axis=1)))
+        score = (int(got[j].sum()), -hoop.area_mm2)
+        if best is None or score > best[0]:
+            best = (score, k, o, (float(cx[j]), float(cy[j])))
     return None if best is None else best[1:]
 
 
@@ -91,7 +103,7 @@ def check(design, limits, eta) -> list[Violation]:
         r = np.array([patch.diameter_mm / 2.0])
         if not _fits_some_hoop(float(r[0]), hoops):
             continue                                  # the hoop-fit rule reports it
-        if best_placement(0, x, y, r, hoops, regions[patch.piece]) is not None:
+        if can_hoop(0, x, y, r, hoops, regions[patch.piece]):
             continue
         frame = max(h.frame_width_mm for h in hoops)
         hint = (f"move the patch inward, hoop the piece as an uncut blank (blank_margin_mm in "
