@@ -20,7 +20,9 @@ def test_ezdxf_recover_lines_are_shown_with_verbose_only(tmp_path):
     default = run("-m", "stitchswitch", "import", str(CLO), "-o", "a.json", cwd=tmp_path)
     assert default.returncode == 0, default.stderr
     lines = default.stderr.splitlines()
-    assert len(lines) == 1 and lines[0].startswith("Warning: ") and "repaired" in lines[0]
+    # the repairs, and the box's 3 x 2 m, implausible for a garment piece
+    assert len(lines) == 2 and all(line.startswith("Warning: ") for line in lines)
+    assert "repaired" in lines[0] and "implausibly large" in lines[1]
     assert not any(line.startswith("recovered") for line in default.stderr.splitlines())
     quiet = run("-m", "stitchswitch", "-q", "import", str(CLO), "-o", "b.json", cwd=tmp_path)
     assert quiet.returncode == 0 and quiet.stderr == ""

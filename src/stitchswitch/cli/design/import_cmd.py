@@ -1,6 +1,7 @@
 """``stitchswitch import``: start a design file from a DXF garment pattern or a rectangle."""
 from __future__ import annotations
 
+import logging
 import os
 
 import click
@@ -76,4 +77,4 @@ def import_cmd(pattern, rectangle, name, size, pieces, units, output):
     for p in chosen if pattern is not None else ():      # a --rectangle is as typed
         warning = size_warning(p)
         if warning:
-            click.echo(f"Warning: {warning}", err=True)
+            logging.getLogger("stitchswitch").warning(warning)      # hidden by -q

@@ -1,10 +1,11 @@
 """What ``place`` and ``edit`` print about the patches they touched: the predicted keypoints
 (the design map, or a direct solve outside it: ``preview3d.profiles``), the footprint on the
-relaxed and the stretched fabric, and one ``Warning:`` line (stderr) per violation of the
+relaxed and the stretched fabric, and one ``Warning:`` line (stderr, through the package's
+logger, so -q hides it) per violation of the
 constraint check that names one of them."""
 from __future__ import annotations
 
-import click
+import logging
 
 from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM
 
@@ -57,6 +58,6 @@ def warn_violations(design, ids) -> int:
     for v in check_design(design):
         if ids & set(v.patches):
             hint = f"; fix: {v.hint}" if v.hint else ""
-            click.echo(f"Warning: {v.rule}: {v.message}{hint}", err=True)
+            logging.getLogger("stitchswitch").warning(f"{v.rule}: {v.message}{hint}")
             n += 1
     return n
