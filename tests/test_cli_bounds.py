@@ -8,8 +8,8 @@ from stitchswitch.cli.main import cli
 
 
 @pytest.mark.parametrize("args, words", [
-    (["precompute", "--diameters", "30:31:1e-9", "--out", "m.npz"], ["--diameters", "at most 2000"]),
-    (["precompute", "--fills", "0.5:1:1e-7", "--out", "m.npz"], ["--fills", "at most 2000"]),
+    (["precompute", "--diameters", "30:31:1e-9", "-o", "m.npz"], ["--diameters", "at most 2000"]),
+    (["precompute", "--fills", "0.5:1:1e-7", "-o", "m.npz"], ["--fills", "at most 2000"]),
     (["patch", "-d", "40", "-p", "0.8", "--row-spacing", "1e-6", "-o", "p.jef"], ["--row-spacing", "1e-06"]),
     (["patch", "-d", "40", "-p", "0.8", "--row-spacing", "9", "-o", "p.jef"], ["--row-spacing", "[0.1, 5]"]),
     (["fem-check", "--designs", "90,1", "--poisson", "0.7"], ["--poisson", "0.7", "(-1, 0.5]"]),

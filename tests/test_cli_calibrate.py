@@ -23,7 +23,7 @@ def test_calibrate_writes_material_and_provenance(tmp_path):
     data = tmp_path / "d.csv"
     data.write_text(SMALL)
     out = tmp_path / "m.json"
-    args = ["calibrate", str(data), "--maxiter", "1", "--popsize", "2", "--workers", "1", "--out", str(out)]
+    args = ["calibrate", str(data), "--maxiter", "1", "--popsize", "2", "--workers", "1", "-o", str(out)]
     result = CliRunner().invoke(cli, args)
     assert result.exit_code == 0, result.output
     material = load_material(out)
@@ -43,13 +43,13 @@ def test_calibrate_bad_input(tmp_path):
     data = tmp_path / "d.csv"
     data.write_text(SMALL.replace("0.8,11.73", "1.8,11.73"))
     out = tmp_path / "m.json"
-    result = CliRunner().invoke(cli, ["calibrate", str(data), "--out", str(out)])
+    result = CliRunner().invoke(cli, ["calibrate", str(data), "-o", str(out)])
     assert result.exit_code == 2 and "fill" in result.output and "line 3" in result.output
     assert not out.exists()
-    result = CliRunner().invoke(cli, ["calibrate", str(data), "--out", str(tmp_path / "nope" / "m.json")])
+    result = CliRunner().invoke(cli, ["calibrate", str(data), "-o", str(tmp_path / "nope" / "m.json")])
     assert result.exit_code == 2 and "does not exist" in result.output
     data.write_text(SMALL)
-    result = CliRunner().invoke(cli, ["calibrate", str(data), "--out", str(out), "--resume"])
+    result = CliRunner().invoke(cli, ["calibrate", str(data), "-o", str(out), "--resume"])
     assert result.exit_code == 2 and "no previous run" in result.output
 
 
@@ -77,7 +77,7 @@ def test_resume_from_a_bad_sidecar_is_one_error(tmp_path, content, needle, sidec
     data, out = _setup(tmp_path)
     path = tmp_path / f"m.{sidecar}.json"
     path.write_text(content.replace("SHA", load_measurements(data).sha256))
-    result = CliRunner().invoke(cli, ["calibrate", str(data), "--out", str(out), "--resume"])
+    result = CliRunner().invoke(cli, ["calibrate", str(data), "-o", str(out), "--resume"])
     assert result.exit_code == 2, result.output
     (line,) = result.stderr.splitlines()
     assert line.startswith("Error: --resume: calibration record") and str(path) in line
@@ -98,7 +98,7 @@ def test_calibrate_checkpoints_each_generation_and_writes_out_at_the_end(tmp_pat
         return real(path, text)
     monkeypatch.setattr(cmd, "atomic_write_text", spy)
     result = CliRunner().invoke(cli, ["calibrate", str(data), "--maxiter", "2", "--popsize", "2",
-                                      "--workers", "1", "--out", str(out)])
+                                      "--workers", "1", "-o", str(out)])
     assert result.exit_code == 0, result.output
     checkpoints = [s for s in seen if s[0] == "m.checkpoint.json"]
     assert len(checkpoints) >= 2 and all(s[1] == "previous material\n" for s in checkpoints)
@@ -114,7 +114,7 @@ def test_a_killed_calibration_leaves_the_previous_material_and_can_resume(tmp_pa
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
     proc = subprocess.Popen([sys.executable, "-m", "stitchswitch", "calibrate", str(data),
                              "--maxiter", "200", "--popsize", "2", "--workers", "1",
-                             "--out", str(out)], env=env, stdout=subprocess.DEVNULL,
+                             "-o", str(out)], env=env, stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL)
     try:
         deadline = time.monotonic() + 120
@@ -130,7 +130,7 @@ def test_a_killed_calibration_leaves_the_previous_material_and_can_resume(tmp_pa
     record = json.loads(checkpoint.read_text())
     assert record["message"] == "in progress" and record["generations"] >= 1
     result = CliRunner().invoke(cli, ["calibrate", str(data), "--maxiter", "1", "--popsize", "2",
-                                      "--workers", "1", "--out", str(out), "--resume"])
+                                      "--workers", "1", "-o", str(out), "--resume"])
     assert result.exit_code == 0, result.output
     provenance = json.loads((tmp_path / "m.calibration.json").read_text())
     assert provenance["start_material"] == f"resumed from {checkpoint}"

@@ -37,12 +37,18 @@ def test_violations_exit_1_table_and_json(design):
     lines = r.output.splitlines()
     assert lines[0].split()[:6] == ["severity", "rule", "patches", "pieces", "value", "mm"]
     assert lines[1].split()[:5] == ["error", "piece-edge", "pocket1", "panel", "12.35"]
-    assert lines[2].split()[:5] == ["warning", "feature-gap", "pocket1", "panel", "0.15"]
-    assert lines[-1] == "5 patch(es) on 1 piece(s): 1 error(s), 1 warning(s)"
+    assert lines[2].split()[0] == "fix:" and "move it at least" in lines[2]
+    assert lines[3].split()[:5] == ["warning", "feature-gap", "pocket1", "panel", "0.15"]
+    # its footprint crosses the outline, so no hoop frame can lie on the cut piece either
+    assert lines[5].split()[:4] == ["error", "hoopable", "pocket1", "panel"]
+    assert "--blank-margin" in lines[6]
+    assert lines[-1] == "5 patch(es) on 1 piece(s): 2 error(s), 1 warning(s)"
     j = run("check", design, "--json")
     assert j.exit_code == 1
     out = json.loads(j.output)
-    assert out["errors"] == 1 and out["warnings"] == 1 and not out["clean"]
+    assert out["errors"] == 2 and out["warnings"] == 1 and not out["clean"]
+    assert [v["rule"] for v in out["violations"]] == ["piece-edge", "feature-gap", "hoopable"]
+    assert all(v["hint"] for v in out["violations"])
     v = out["violations"][0]
     assert v["rule"] == "piece-edge" and v["patches"] == ["pocket1"] and v["limit"] == 15.0
     assert v["value"] == pytest.approx(30 - 30 / 1.7)
@@ -52,9 +58,12 @@ def test_limit_options_change_the_result(design):
     assert run("place", design, "--piece", "panel", "--at", "30,30", "-d", "60", "-p", "0.8",
                "--id-prefix", "pocket").exit_code == 0
     r = run("check", design, "--seam-allowance", "5", "--edge-clearance", "0", "--min-gap", "0.3")
+    assert r.exit_code == 1 and "hoopable" in r.output      # no room for a frame on the cut piece
+    r = run("check", design, "--seam-allowance", "5", "--edge-clearance", "0", "--min-gap", "0.3",
+            "--blank-margin", "60")
     assert r.exit_code == 0, r.output
     r = run("check", design, "--min-spacing", "20", "--seam-allowance", "5",
-            "--edge-clearance", "0", "--min-gap", "0.3")
+            "--edge-clearance", "0", "--min-gap", "0.3", "--blank-margin", "60")
     assert r.exit_code == 1 and "spacing" in r.output
 
 

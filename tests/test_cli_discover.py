@@ -58,6 +58,7 @@ def test_report_json_and_summary(case, tmp_path):
                                   *ARGS, "--json"])
     assert r2.exit_code == 0, r2.output
     assert r2.stdout == js.read_text()
+    assert "Warning: --data is deprecated; use the DATA.csv argument" in r2.stderr
     assert check_discovery_dir(out) is True
 
 

@@ -53,7 +53,8 @@ def test_garment_outputs_match_the_plan(tmp_path):
     n = len(doc["hoopings"])
     assert n == doc["grouping"]["hoopings"] == 2 and doc["grouping"]["method"] == "mip"
     assert doc["grouping"]["optimal"] and doc["order"]["conflicts"] == []
-    names = {f"hoop0{k}.{e}" for k in range(1, n + 1) for e in ("jef", "png", "svg")}
+    names = {f"hoop0{k}{e}" for k in range(1, n + 1)
+             for e in (".jef", ".png", ".svg", "-template-a4.pdf", "-template-letter.pdf")}
     assert sorted(os.listdir(out)) == sorted(names | {"overview.png", "overview.svg",
                                                       "fabrication.json", "fabrication.md",
                                                       "fabrication.html"})
@@ -237,3 +238,27 @@ def test_ids_are_escaped_in_the_sheet_and_control_characters_refused(tmp_path):
         r = run("fabricate", design, "-o", tmp_path / "none")
         assert r.exit_code == 2 and "$.patches[0].id" in r.output
         assert "control character" in r.output and not (tmp_path / "none").exists()
+
+
+def test_templates_are_1_to_1_tiled_pdfs(tmp_path):
+    """Each page is the paper's size and 1:1: the axes span the page minus 10 mm margins in
+    data mm, so the 50 mm square prints as 50 mm."""
+    import re
+
+    design = write_design(tmp_path / "design.json", SMALL)
+    out = tmp_path / "out"
+    assert run("fabricate", design, "-o", out).exit_code == 0
+    doc = json.loads((out / "fabrication.json").read_text())
+    for h in doc["hoopings"]:
+        for key, (w_pt, h_pt) in (("template_a4", (595.28, 841.89)),
+                                  ("template_letter", (612.0, 792.0))):
+            pdf = (out / h["files"][key]).read_bytes()
+            assert pdf.startswith(b"%PDF")
+            boxes = re.findall(rb"/MediaBox \[ *0 0 ([\d.]+) ([\d.]+) *\]", pdf)
+            assert boxes and all(abs(float(a) - w_pt) < 0.5 and abs(float(b) - h_pt) < 0.5
+                                 for a, b in boxes)
+    again = tmp_path / "again"
+    assert run("fabricate", design, "-o", again).exit_code == 0
+    name = doc["hoopings"][0]["files"]["template_a4"]
+    assert (out / name).read_bytes() == (again / name).read_bytes()
+

@@ -20,7 +20,7 @@ def test_rectangle(tmp_path):
     out = tmp_path / "d.json"
     r = run("import", "--rectangle", "300x200", "-o", out)
     assert r.exit_code == 0, r.output
-    assert "rectangle: 300.0 x 200.0 mm, 4 points" in r.output
+    assert "rectangle: 300.0 x 200.0 mm, x 0.0..300.0, y 0.0..200.0 mm, 4 points" in r.output
     d = load_design(out)
     (piece,) = d.pieces
     assert piece.name == "rectangle" and piece.outline_mm.tolist() == [[0, 0], [300, 0], [300, 200], [0, 200]]
@@ -95,3 +95,16 @@ def test_broken_dxf(tmp_path):
     out = tmp_path / "d.json"
     r = run("import", bad, "-o", out)
     assert r.exit_code == 2 and "truncated DXF file" in r.output and not out.exists()
+
+
+def test_import_names_the_frame_and_warns_on_implausible_sizes(tmp_path):
+    from pathlib import Path
+    tank = Path(__file__).parent / "data/external/dxf/WM_LOOSE_SHAPE_TANK_AAMA.DXF"
+    args = ["import", str(tank), "--size", "36", "--pieces", "RELAXED TANK FR V2"]
+    r = CliRunner().invoke(cli, [*args, "-o", str(tmp_path / "a.json")])
+    assert r.exit_code == 0 and "Warning" not in r.output
+    assert "678.4 x 290.5 mm, x 7.8..686.2, y 503.9..794.3 mm" in r.output
+    r = CliRunner().invoke(cli, [*args, "--units", "mm", "-o", str(tmp_path / "b.json")])
+    assert r.exit_code == 0
+    assert "Warning: piece RELAXED TANK FR V2 is 26.7 x 11.4 mm, implausibly small" in r.stderr
+    assert "25.4 times this is 678 mm" in r.stderr

@@ -41,11 +41,11 @@ def test_every_output_file_option_is_checked_at_parse_time():
 CASES = {
     "simulate --profile-csv": (["simulate", "--profile-csv", "{OUT}"], ".csv"),
     "precompute --out": (["precompute", "--diameters", "30:40:10", "--fills", "0.8:0.9:0.1",
-                          "--workers", "1", "--out", "{OUT}"], ".npz"),
+                          "--workers", "1", "-o", "{OUT}"], ".npz"),
     "precompute --plot": (["precompute", "--diameters", "30:40:10", "--fills", "0.8:0.9:0.1",
-                           "--workers", "1", "--out", "m.npz", "--plot", "{OUT}"], ".png"),
+                           "--workers", "1", "-o", "m.npz", "--plot", "{OUT}"], ".png"),
     "calibrate --out": (["calibrate", "d.csv", "--maxiter", "1", "--popsize", "2", "--workers",
-                         "1", "--out", "{OUT}"], ".json"),
+                         "1", "-o", "{OUT}"], ".json"),
     "patch -o": (["patch", "-d", "30", "-p", "0.8", "-o", "{OUT}"], ".dst"),
     "patch --preview": (["patch", "-d", "30", "-p", "0.8", "-o", "p.dst", "--preview", "{OUT}"],
                         ".png"),
@@ -111,11 +111,11 @@ def test_a_bad_output_path_is_one_error_before_any_work(workdir, case, kind, mon
 
 
 @pytest.mark.parametrize("args, bad", [
-    (["precompute", "--out", "m.xyz"], "unknown extension '.xyz'; use .npz"),
-    (["precompute", "--out", "m.npz", "--plot", "p.jpg"], "unknown extension '.jpg'; use .png"),
+    (["precompute", "-o", "m.xyz"], "unknown extension '.xyz'; use .npz"),
+    (["precompute", "-o", "m.npz", "--plot", "p.jpg"], "unknown extension '.jpg'; use .png"),
     (["patch", "-d", "30", "-p", "0.8", "-o", "p.dst", "--preview", "p.gif"], "'.gif'"),
     (["preview", "-d", "40", "-p", "0.8", "-o", "p.png", "--mesh", "m.xyz"], "'.xyz'"),
-    (["calibrate", "d.csv", "--out", "m.txt"], "use .json"),
+    (["calibrate", "d.csv", "-o", "m.txt"], "use .json"),
     (["patch", "-d", "30", "-p", "0.8", "-o", "p.png", "--format", "dst", "--preview", "p.png"],
      "the same file as --output"),
 ])
@@ -133,7 +133,7 @@ def test_the_check_comes_before_the_compute(workdir, monkeypatch):
     def build(*args, **kwargs):
         raise AssertionError("computed before the output check")
     monkeypatch.setattr(precompute, "build", build)
-    result = CliRunner().invoke(cli, ["precompute", "--out", "m.npz", "--plot",
+    result = CliRunner().invoke(cli, ["precompute", "-o", "m.npz", "--plot",
                                       "missingdir/p.png"])
     assert result.exit_code == 2 and "missingdir/p.png" in result.stderr
 
@@ -152,7 +152,7 @@ def test_precompute_writes_map_and_plot_together(workdir, monkeypatch, existing)
         (workdir / "m.npz").write_bytes(b"old map")
     _fail_second_output(monkeypatch, heatmap, "plot_height_map")
     result = CliRunner().invoke(cli, ["precompute", "--diameters", "30:40:10", "--fills",
-                                      "0.8:0.9:0.1", "--workers", "1", "--out", "m.npz",
+                                      "0.8:0.9:0.1", "--workers", "1", "-o", "m.npz",
                                       "--plot", "p.png"])
     assert result.exit_code == 2, result.output
     assert result.stderr.splitlines()[-1] == ("Error: --plot 'p.png': cannot be written (No "

@@ -41,13 +41,13 @@ def test_output_option_leaves_the_input(design, tmp_path):
     before = design.read_bytes()
     out = tmp_path / "out.json"
     r = run("place", design, "--piece", "panel", "--grid", "1x2", "--pitch", "50",
-            "--centre", "100,100", "-d", "40", "-p", "1", "-o", out)
+            "--center", "100,100", "-d", "40", "-p", "1", "-o", out)
     assert r.exit_code == 0, r.output
     assert design.read_bytes() == before
     assert [p.centre_mm for p in load_design(out).patches] == [(75.0, 100.0), (125.0, 100.0)]
     again = tmp_path / "again.json"
     run("place", design, "--piece", "panel", "--grid", "1x2", "--pitch", "50",
-        "--centre", "100,100", "-d", "40", "-p", "1", "-o", again)
+        "--center", "100,100", "-d", "40", "-p", "1", "-o", again)
     assert again.read_bytes() == out.read_bytes()
 
 
@@ -56,7 +56,7 @@ def test_output_option_leaves_the_input(design, tmp_path):
     (["--at", "1,2", "--grid", "2x2", "-d", "40", "-p", "1"], "(got --at, --grid)"),
     (["--grid", "2x2", "-d", "40", "-p", "1"], "--grid needs --pitch MM"),
     (["--at", "1,2", "--pitch", "5", "-d", "40", "-p", "1"], "--pitch applies to --grid and --along"),
-    (["--at", "1,2", "--centre", "5,5", "-d", "40", "-p", "1"], "--centre applies to --grid only"),
+    (["--at", "1,2", "--center", "5,5", "-d", "40", "-p", "1"], "--center applies to --grid only"),
     (["--at", "1", "-d", "40", "-p", "1"], "--at '1': expected 2 numbers X,Y"),
     (["--at", "a,b", "-d", "40", "-p", "1"], "--at 'a,b': expected numbers"),
     (["--grid", "2by2", "--pitch", "5", "-d", "40", "-p", "1"], "--grid '2by2': expected ROWSxCOLS"),

@@ -20,7 +20,9 @@ def test_ezdxf_recover_lines_are_shown_with_verbose_only(tmp_path):
     default = run("-m", "stitchswitch", "import", str(CLO), "-o", "a.json", cwd=tmp_path)
     assert default.returncode == 0, default.stderr
     lines = default.stderr.splitlines()
-    assert len(lines) == 1 and lines[0].startswith("Warning: ") and "repaired" in lines[0]
+    # the repairs, and the box's 3 x 2 m, implausible for a garment piece
+    assert len(lines) == 2 and all(line.startswith("Warning: ") for line in lines)
+    assert "repaired" in lines[0] and "implausibly large" in lines[1]
     assert not any(line.startswith("recovered") for line in default.stderr.splitlines())
     quiet = run("-m", "stitchswitch", "-q", "import", str(CLO), "-o", "b.json", cwd=tmp_path)
     assert quiet.returncode == 0 and quiet.stderr == ""
@@ -48,7 +50,7 @@ def test_numpy_warnings_go_to_the_logger(tmp_path):
 
 def test_quiet_hides_progress(tmp_path):
     args = ("-m", "stitchswitch", "{q}", "precompute", "--diameters", "30:31:1", "--fills",
-            "0.8:0.81:0.01", "--workers", "1", "--out", "m.npz")
+            "0.8:0.81:0.01", "--workers", "1", "-o", "m.npz")
     loud = run(*[a.replace("{q}", "-v") for a in args], cwd=tmp_path)
     assert loud.returncode == 0 and "solving 2 x 2 designs" in loud.stderr
     quiet = run(*[a.replace("{q}", "-q") for a in args], cwd=tmp_path)

@@ -15,9 +15,12 @@ from stitchswitch.layout.garment.design import CompositeSpec, Design, MachineSpe
 ETA = 1.7        # the default material's pre-stretch
 
 
-def design(*patches, hoop=None, outline=((0, 0), (300, 0), (300, 200), (0, 200))) -> Design:
+def design(*patches, hoop=None, outline=((0, 0), (300, 0), (300, 200), (0, 200)),
+           blank=100.0) -> Design:
+    """A one-piece design; hooped as a wide uncut blank (``blank`` mm) so that only the rule
+    under test fires (a cut 300 x 200 mm piece leaves no room for a frame near its edges)."""
     return Design(1, [PieceSpec("panel", "", "test", outline)], list(patches),
-                  machine=MachineSpec("janome-550e", hoop))
+                  machine=MachineSpec("janome-550e", hoop), blank_margin_mm=blank)
 
 
 def patch(pid="a", centre=(150, 100), d=40.0, fill=1.0, **kw) -> PatchSpec:
@@ -100,10 +103,10 @@ def test_feature_gap():
 
 def test_hoop_fit_largest_and_chosen_hoop():
     big = design(patch("a", (150, 100), d=195.0))           # RE36b: 200 mm, 5 mm margin
-    assert rules(check_design(big)) == ["hoop-fit"]
-    v = check_design(big)[0]
+    assert rules(check_design(big)) == ["model-range", "hoop-fit"]
+    v = check_design(big)[1]
     assert v.value == pytest.approx(205.0) and v.limit == 200.0
-    assert check_design(design(patch("a", (150, 100), d=190.0))) == []
+    assert rules(check_design(design(patch("a", (150, 100), d=190.0)))) == ["model-range"]
     small_hoop = design(patch("a", (150, 100), d=135.0), hoop="SQ14b")
     assert rules(check_design(small_hoop)) == ["hoop-fit"]
     assert check_design(small_hoop, CheckLimits(hoop_margin_mm=2.0)) == []
@@ -119,7 +122,8 @@ def test_violation_record():
     (v,) = check_design(design(patch(fill=0.9)))
     assert isinstance(v, Violation)
     d = v.as_dict()
-    assert list(d) == ["rule", "severity", "patches", "pieces", "value", "limit", "message"]
+    assert list(d) == ["rule", "severity", "patches", "pieces", "value", "limit", "message",
+                       "hint"]
     assert d["patches"] == ["a"]
 
 

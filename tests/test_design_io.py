@@ -194,7 +194,7 @@ CASES = [
                    "reads version 1)"),
     ("version", "1", "$.version: '1' is not a supported design file version"),
     ("version", ..., "$.version: missing (this stitchswitch reads version 1)"),
-    ("colour", "red", "$.colour: unknown key (allowed: version, pieces, patches, material, machine)"),
+    ("colour", "red", "$.colour: unknown key (allowed: version, pieces, patches, material, machine, blank_margin_mm)"),
     ("material", {"name": "default", "file": "m.json"},
      "$.material: give exactly one of 'name' (a built-in material) or 'file'"),
     ("material", {"name": "silk"}, "$.material.name: 'silk' is not a built-in material"),
@@ -281,7 +281,8 @@ def test_documented_example_loads():
 def test_schema_accepts_the_examples_and_rejects_bad_values():
     schema = json.loads(SCHEMA.read_text())
     assert set(schema["required"]) == {"version", "pieces", "patches"}
-    assert set(schema["properties"]) == {"version", "pieces", "patches", "material", "machine"}
+    assert set(schema["properties"]) == {"version", "pieces", "patches", "material", "machine",
+                                         "blank_margin_mm"}
     import jsonschema  # in the test extra: never skipped
     jsonschema.Draft202012Validator.check_schema(schema)
     validator = jsonschema.Draft202012Validator(schema)

@@ -4,11 +4,14 @@ line is a command (``>`` lines continue it); the lines after it are its expected
 which must appear in the real output in order (times such as ``0.03 s`` are masked; ``...``
 skips lines). Commands must exit 0 unless the line ends in ``# exit N``."""
 import re
+import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+
+from helpers import EXTERNAL
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"
 GUIDE = DOCS / "guide.md"
@@ -72,6 +75,8 @@ def test_guide_images_exist():
 
 @pytest.mark.slow
 def test_guide_examples_run(tmp_path):
+    # the guide's garment pattern, as the reader downloads it (tests/data/external/README.md)
+    shutil.copyfile(EXTERNAL / "dxf" / "WM_LOOSE_SHAPE_TANK_AAMA.DXF", tmp_path / "tank.dxf")
     for block in blocks(GUIDE.read_text()):
         for command, expected, code in commands(block):
             r = subprocess.run(["bash", "-c", shell(command)], cwd=tmp_path, capture_output=True,
@@ -81,6 +86,8 @@ def test_guide_examples_run(tmp_path):
     assert (tmp_path / "pocket-demo" / "summary.html").is_file()
     assert (tmp_path / "fabrication" / "hoop01.jef").is_file()
     assert (tmp_path / "my-material.json").is_file()
+    assert (tmp_path / "tank-fabrication" / "hoop02.jef").is_file()
+    assert (tmp_path / "tank-layout.png").is_file()
 
 
 def test_readme_examples_with_output_run(tmp_path):

@@ -30,15 +30,49 @@ COMMANDS = {
     "fabricate": "design.fabricate:fabricate_cmd",
     "import": "design.import_cmd:import_cmd",
     "place": "design.place:place",
+    "edit": "design.edit:edit",
+    "layout": "design.layout_cmd:layout_cmd",
+    "remove": "design.edit:remove",
     "check": "design.check:check",
     "preview": "design.preview:preview",
     "studio": "studio:studio",
 }
 
 
+#: ``stitchswitch --help`` lists the commands by workflow, in this order; a command of
+#: ``COMMANDS`` named in no section is listed under "other" (so registering one needs no edit
+#: here).
+SECTIONS = {
+    "design": ("import", "place", "edit", "remove", "check", "layout", "preview", "inverse",
+               "demo"),
+    "predict": ("simulate", "force", "sensitivity", "precompute"),
+    "data": ("validate", "calibrate", "discover"),
+    "fabricate": ("fabricate", "patch", "inspect"),
+    "reference": ("fem-check", "fem-solve", "switch-force"),
+}
+
+
 class LazyGroup(options.Group):
     def list_commands(self, ctx):
         return list(COMMANDS)
+
+    def format_commands(self, ctx, formatter):
+        """The commands under their workflow's heading (``SECTIONS``)."""
+        listed = [n for names in SECTIONS.values() for n in names]
+        sections = dict(SECTIONS)
+        other = tuple(n for n in COMMANDS if n not in listed)
+        if other:
+            sections["other"] = other
+        limit = formatter.width - 6 - max(len(n) for n in COMMANDS)
+        for title, names in sections.items():
+            rows = []
+            for name in names:
+                cmd = self.get_command(ctx, name)
+                if cmd is not None and not cmd.hidden:
+                    rows.append((name, cmd.get_short_help_str(limit)))
+            if rows:
+                with formatter.section(f"Commands: {title}"):
+                    formatter.write_dl(rows)
 
     def get_command(self, ctx, name):
         if name not in COMMANDS:

@@ -136,3 +136,29 @@ max_iter_opt = click.option(
     help="Iteration budget: Newton iterations (default 500) or Adam steps (default 20000).")
 json_opt = click.option(
     "--json", "as_json", is_flag=True, help="Print one JSON object instead of the table.")
+
+
+def deprecated_alias(old: str, new: str):
+    """A hidden option ``old`` kept for old scripts: its value goes to ``new``'s parameter with
+    one ``Warning:`` line on stderr (so that ``--json`` output stays clean). Give it the same
+    ``type`` through ``**kwargs`` of the returned decorator factory."""
+    def callback(ctx, param, value):
+        if value is None:
+            return None
+        click.echo(f"Warning: {old} is deprecated; use {new}", err=True)
+        return value
+
+    def decorator(dest: str, **kwargs):
+        return click.option(old, dest, default=None, hidden=True, expose_value=True,
+                            callback=callback, **kwargs)
+    return decorator
+
+
+def one_of(new_value, old_value, new: str, old: str):
+    """The value of an option given under its name or its deprecated alias (not both)."""
+    if new_value is not None and old_value is not None:
+        raise InputError(f"give {new} or the deprecated {old}, not both")
+    value = new_value if new_value is not None else old_value
+    if value is None:
+        raise InputError(f"Missing option '{new}'.")
+    return value

@@ -1,6 +1,7 @@
 """``stitchswitch check``: the constraint check of a design file (exit 0 clean, 1 violations)."""
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 
@@ -36,17 +37,29 @@ def _number(v: float):
               metavar="MM", help="Margin inside the hoop field (default: the hoop's own, "
                                  "from the machine catalogue).")
 @_limit_opt("--resolution", "resolution_mm", "Triangle side of the tessellation.")
-def check(design, as_json, **limits):
-    """Check DESIGN: patches inside their pieces with an edge margin, spacing between patches,
-    triangle sides and gaps the machine can form, and hoop fit. Exit code 0 when clean, 1 when
-    there are violations, 2 for bad input."""
+@click.option("--blank-margin", "blank_margin_mm", type=options.FINITE_FLOAT, default=None,
+              metavar="MM", help="Judge hoopability with every piece hooped as an uncut blank "
+                                 "reaching MM past its outline, as fabricate --blank-margin "
+                                 "[default: the design's blank_margin_mm].")
+def check(design, as_json, blank_margin_mm, **limits):
+    """Check DESIGN: diameters in the model's range, patches inside their pieces with an edge
+    margin, spacing between patches, triangle sides and gaps the machine can form, hoop fit,
+    and that every patch can be hooped where it lies (the frame on the piece, or on its uncut
+    blank: the design's blank_margin_mm). Each violation names its patch and a fix. Every
+    error is something fabricate refuses or the model cannot predict. Exit code 0 when clean,
+    1 when there are violations, 2 for bad input."""
     lim = CheckLimits(**limits)
+    if blank_margin_mm is not None and blank_margin_mm < 0:
+        raise options.InputError(f"--blank-margin {blank_margin_mm:g} must be >= 0")
     d = load_design(design)
+    if blank_margin_mm is not None:
+        d = dataclasses.replace(d, blank_margin_mm=blank_margin_mm)
     found = check_design(d, lim)
     errors = sum(v.severity == "error" for v in found)
     if as_json:
         out = {"design": design, "patches": len(d.patches), "pieces": len(d.pieces),
-               "limits": lim.as_dict(), "clean": not found,
+               "limits": lim.as_dict(), "blank_margin_mm": d.blank_margin_mm,
+               "clean": not found,
                "errors": errors, "warnings": len(found) - errors,
                "violations": [dict(v.as_dict(), value=_number(v.value), limit=_number(v.limit))
                               for v in found]}
@@ -67,6 +80,9 @@ def _table(found) -> str:
              "-" if not math.isfinite(v.value) else f"{v.value:.2f}", f"{v.limit:g}", v.message)
             for v in found]
     widths = [max(len(r[i]) for r in (head, *rows)) for i in range(len(head) - 1)]
-    lines = ["  ".join(c.ljust(w) for c, w in zip(r[:-1], widths)) + "  " + r[-1]
-             for r in (head, *rows)]
+    lines = ["  ".join(c.ljust(w) for c, w in zip(head[:-1], widths)) + "  " + head[-1]]
+    for v, r in zip(found, rows):
+        lines.append("  ".join(c.ljust(w) for c, w in zip(r[:-1], widths)) + "  " + r[-1])
+        if v.hint:
+            lines.append(" " * (sum(widths) + 2 * len(widths)) + "fix: " + v.hint)
     return "\n".join(lines)

@@ -25,7 +25,13 @@ from stitchswitch.layout.garment.design_io import load_design
               help="Use only this hoop (default: the design's machine.hoop, else all hoops).")
 @click.option("--format", "fmt", default=None, metavar="FMT",
               help="Embroidery format (default: the machine's, jef for the 550E): "
-                   + ", ".join(export.supported_formats()) + ".")
+                   + ", ".join(f + (" (experimental)" if f in export.EXPERIMENTAL else "")
+                               for f in export.supported_formats()) + ".")
+@click.option("--blank-margin", "blank_margin_mm", type=options.FINITE_FLOAT, default=None,
+              metavar="MM", help="Hoop every piece as an uncut blank reaching MM past its outline "
+                                 "(relaxed mm), so a hoop frame may clamp fabric outside the "
+                                 "piece [default: the design's blank_margin_mm, 0: pieces "
+                                 "hooped already cut out].")
 @click.option("--mode", type=click.Choice(MODES), default="garment", show_default=True,
               help="garment: patches stay on the garment piece; free: patches packed on "
                    "separate fabric.")
@@ -39,15 +45,17 @@ from stitchswitch.layout.garment.design_io import load_design
 @click.option("--force", is_flag=True, help="Replace a non-empty output directory.")
 @click.option("--output", "-o", "outdir", type=click.Path(file_okay=False), required=True,
               metavar="OUTDIR", help="Output directory (written as a whole).")
-def fabricate_cmd(design_path, machine, machines_file, hoop, fmt, mode, time_limit_s, spacing_mm,
-                  resolution_mm, force, outdir):
+def fabricate_cmd(design_path, machine, machines_file, hoop, fmt, blank_margin_mm, mode,
+                  time_limit_s, spacing_mm, resolution_mm, force, outdir):
     """Write the fabrication folder of DESIGN.json: per hooping an embroidery file and a
     layout (PNG, SVG), an overview, fabrication.md/.html and fabrication.json."""
     if not time_limit_s > 0:
         raise options.InputError(f"--time-limit {time_limit_s:g} must be positive")
+    if blank_margin_mm is not None and blank_margin_mm < 0:
+        raise options.InputError(f"--blank-margin {blank_margin_mm:g} must be >= 0")
     design = load_design(design_path)
     opts = FabricateOptions(machine, machines_file, hoop, fmt, mode, time_limit_s, spacing_mm,
-                            resolution_mm, force)
+                            resolution_mm, force, blank_margin_mm)
     res = fabricate(design, outdir, opts)
     rep, doc = res.grouping.report, res.doc
     gap = "n/a" if rep.mip_gap is None else f"{100 * rep.mip_gap:.2f} %"

@@ -1,6 +1,7 @@
 """``stitchswitch import``: start a design file from a DXF garment pattern or a rectangle."""
 from __future__ import annotations
 
+import logging
 import os
 
 import click
@@ -14,6 +15,7 @@ from stitchswitch.layout.garment.design import VERSION, Design
 from stitchswitch.layout.garment.design_io import save_design
 from stitchswitch.layout.garment.dxf.reader import UNITS, import_dxf
 from stitchswitch.layout.garment.piece_select import rectangle_piece, select_pieces
+from stitchswitch.layout.garment.plausible import size_warning
 
 
 def _rectangle(text: str) -> tuple[float, float]:
@@ -30,9 +32,9 @@ def _rectangle(text: str) -> tuple[float, float]:
 @click.argument("pattern", required=False, type=click.Path(dir_okay=False))
 @click.option("--rectangle", default=None, metavar="WxH",
               help="Instead of a pattern: one rectangular piece, WIDTHxHEIGHT in mm.")
-@click.option("--name", default="rectangle", show_default=True,
+@click.option("--name", default="rectangle", show_default=True, metavar="NAME",
               help="Name of the --rectangle piece.")
-@click.option("--size", default=None, help="The pattern size to import (required when the "
+@click.option("--size", default=None, metavar="SIZE", help="The pattern size to import (required when the "
                                            "file has several).")
 @click.option("--pieces", default=None, metavar="NAME,...",
               help="Only these pieces (default: every piece of the size).")
@@ -42,7 +44,9 @@ def _rectangle(text: str) -> tuple[float, float]:
               help="The design file to write.")
 def import_cmd(pattern, rectangle, name, size, pieces, units, output):
     """Write a new design file (no patches yet) holding the pieces of the DXF PATTERN (AAMA/ASTM
-    from Gerber AccuMark or CLO, or plain DXF), or one --rectangle. Outlines are in mm."""
+    from Gerber AccuMark or CLO, or plain DXF), or one --rectangle. Outlines are in mm; each
+    piece is listed with its bounding box in the design's frame (the coordinates --at takes),
+    and a piece of implausible garment size gets a Warning: line (wrong units?)."""
     if (pattern is None) == (rectangle is None):
         raise InvalidInputError("give either a PATTERN file or --rectangle WxH (not both)")
     if rectangle is not None:
@@ -62,10 +66,15 @@ def import_cmd(pattern, rectangle, name, size, pieces, units, output):
         save_design(design, tmp["--output"])
     rows = [("pieces", str(len(chosen)))]
     for p in chosen:
-        w, h = (float(v) for v in np.ptp(p.outline_mm, axis=0))
+        (x0, y0), (x1, y1) = np.min(p.outline_mm, axis=0), np.max(p.outline_mm, axis=0)
         label = f"{p.name} (size {p.size})" if p.size else p.name
-        rows.append(("piece", f"{label}: {w:.1f} x {h:.1f} mm, {len(p.outline_mm)} points"))
+        rows.append(("piece", f"{label}: {x1 - x0:.1f} x {y1 - y0:.1f} mm, x {x0:.1f}..{x1:.1f},"
+                              f" y {y0:.1f}..{y1:.1f} mm, {len(p.outline_mm)} points"))
     if repairs:
         rows.append(("repaired", f"{len(repairs)} problem(s) in the DXF file, e.g. {repairs[0]}"))
     rows.append(("file", output))
     click.echo(key_value_table(rows))
+    for p in chosen if pattern is not None else ():      # a --rectangle is as typed
+        warning = size_warning(p)
+        if warning:
+            logging.getLogger("stitchswitch").warning(warning)      # hidden by -q

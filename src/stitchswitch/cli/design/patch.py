@@ -61,7 +61,9 @@ ROW_SPACING = options.BoundedFloat(ROW_SPACING_RANGE_MM[0], ROW_SPACING_RANGE_MM
               default=0.1, show_default=True, metavar="MM",
               help="Row ends lengthened by this against the knit's pull-in (at most a quarter "
                    "of the gap to the next piece).")
-@click.option("--output", "-o", type=options.OutputFile(as_str=True), required=True, metavar="FILE")
+@click.option("--output", "-o", type=options.OutputFile(as_str=True), required=True, metavar="FILE",
+              help="Embroidery file to write; its extension names the format (.jef, .dst, "
+                   ".pes; .exp and .vp3 experimental).")
 @click.option("--preview", "preview_path", type=options.OutputFile((".png", ".svg"), as_str=True),
               default=None, metavar="FILE",
               help="Also write a stitch-plan preview (.png or .svg), together with -o: both or "

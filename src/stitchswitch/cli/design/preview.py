@@ -13,6 +13,7 @@ from stitchswitch.files.outputs import check_distinct, together
 from stitchswitch.preview3d.camera import VIEWS
 from stitchswitch.preview3d.colours import COLOURS
 from stitchswitch.preview3d.mesh_io import MESH_EXTENSIONS
+from stitchswitch.reduced.model.params import DIAMETER_RANGE_MM
 
 
 @click.command(cls=options.Command)
@@ -72,9 +73,17 @@ def _design(path, output, state, view, size, colour, mesh_path, material_path):
     t0 = time.perf_counter()
     design = load_design(path)
     status = violations = None
+    lo, hi = DIAMETER_RANGE_MM
+    outside = [p for p in design.patches if not lo <= p.diameter_mm <= hi]
     if colour == "violations":
         patch_status, piece_status, violations = colours.design_status(design)
         status = (patch_status, piece_status)
+        design = design.with_patches(p for p in design.patches if p not in outside)
+    elif outside:
+        raise InvalidInputError(
+            f"{path}: patch {outside[0].id} has d = {outside[0].diameter_mm:g} mm, outside the "
+            f"model's range [{lo:g}, {hi:g}] mm, so its shape cannot be predicted "
+            "(stitchswitch check lists every such patch; --color violations draws the rest)")
     scene = build_scene(spec_from_design(design).with_state(state))
     image, _ = render.render_scene(scene, opts, status)
     with together({"--output": output, "--mesh": mesh_path}) as tmp:
@@ -89,6 +98,11 @@ def _design(path, output, state, view, size, colour, mesh_path, material_path):
     if violations is not None:
         n_err = sum(v.severity == "error" for v in violations)
         rows.append(("violations", f"{n_err} errors, {len(violations) - n_err} warnings"))
+        rows += [(f"{v.severity} {v.rule}", f"{v.message}; fix: {v.hint}" if v.hint
+                  else v.message) for v in violations]
+        if outside:
+            rows.append(("not drawn", ", ".join(p.id for p in outside)
+                         + ": outside the model's range (model-range)"))
     rows.append(("image", output))
     if mesh_path is not None:
         rows.append(("mesh", f"{mesh_path} ({n_points} points)"))

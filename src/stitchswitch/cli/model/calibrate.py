@@ -42,33 +42,35 @@ def _write_final(out: pathlib.Path, record: dict) -> None:
     """The material file (loadable with --material) and its provenance, as one unit."""
     from stitchswitch.reduced.model.params import Material
 
-    with together({"--out": out, "provenance": provenance_path(out)}) as tmp:
-        atomic_write_text(tmp["--out"], canonical_json(Material(**record["material"])))
+    with together({"--output": out, "provenance": provenance_path(out)}) as tmp:
+        atomic_write_text(tmp["--output"], canonical_json(Material(**record["material"])))
         atomic_write_text(tmp["provenance"], _record_text(record))
 
 
 @click.command(cls=options.Command)
 @click.argument("data_path", metavar="DATA.csv", type=click.Path(dir_okay=False, path_type=pathlib.Path))
 @options.material_opt
-@click.option("--maxiter", type=click.IntRange(min=1), default=30, show_default=True,
+@click.option("--maxiter", type=click.IntRange(min=1), default=30, show_default=True, metavar="N",
               help="Differential-evolution generations.")
-@click.option("--popsize", type=click.IntRange(min=2), default=10, show_default=True,
+@click.option("--popsize", type=click.IntRange(min=2), default=10, show_default=True, metavar="N",
               help="Population size multiplier (scipy's popsize).")
-@click.option("--seed", type=int, default=0, show_default=True)
+@click.option("--seed", type=int, default=0, show_default=True, metavar="N",
+              help="Seed of the differential evolution: the same seed gives the same material.")
 @click.option("--workers", type=click.IntRange(min=1), default=None, metavar="N",
               help="Worker processes (default: one per core).")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT",
               help="Evaluate on a Dask distributed cluster instead of local processes.")
 @click.option("--resume", is_flag=True,
-              help="Start from the best point of a previous, interrupted run with the same --out.")
-@click.option("--out", "out", type=options.OutputFile((".json",)), required=True,
-              metavar="FILE", help="Calibrated material (JSON), written when the search ends; "
+              help="Start from the best point of a previous, interrupted run with the same -o/--output.")
+@options.deprecated_alias("--out", "-o/--output")("out_old", type=options.OutputFile((".json",)))
+@click.option("--output", "-o", "out", type=options.OutputFile((".json",)), default=None,
+              metavar="FILE.json", help="Required. Calibrated material (JSON), written when the search ends; "
                                    "provenance goes to FILE's stem + .calibration.json, the best "
                                    "point so far to FILE's stem + .checkpoint.json after every "
                                    "generation.")
 @options.json_opt
-def calibrate(data_path, material_path, maxiter, popsize, seed, workers, scheduler, resume, out,
-              as_json):
+def calibrate(data_path, material_path, maxiter, popsize, seed, workers, scheduler, resume,
+              out_old, out, as_json):
     """Fit the material to the training rows of DATA.csv.
 
     Fitted: the seven coefficients but the overall scale k_theta_fab, the compressive ratios
@@ -76,14 +78,15 @@ def calibrate(data_path, material_path, maxiter, popsize, seed, workers, schedul
     jammed knit's stiffness ratio c_jam and the hardening limit gamma_mm, by differential
     evolution and a final least-squares polish.
     The objective is the mean squared error over the five keypoints (the paper's). The best
-    point so far is written to the checkpoint after every generation; --out (and its
+    point so far is written to the checkpoint after every generation; -o/--output (and its
     provenance) only when the search ends, so an interrupted or killed run leaves an existing
-    --out file as it was, and can be continued with --resume.
+    output file as it was, and can be continued with --resume.
     """
     from stitchswitch.validation.measured import load_measurements
 
+    out = options.one_of(out, out_old, "-o/--output", "--out")
     checkpoint = checkpoint_path(out)
-    check_distinct({"--out": out, "provenance": provenance_path(out), "checkpoint": checkpoint,
+    check_distinct({"--output": out, "provenance": provenance_path(out), "checkpoint": checkpoint,
                     "DATA.csv": data_path})
     data = load_measurements(data_path)
     start = DEFAULT_MATERIAL if material_path is None else load_material(material_path)

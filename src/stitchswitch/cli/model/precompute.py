@@ -26,24 +26,26 @@ from stitchswitch.reduced.model.params import DEFAULT_MATERIAL
               help="Worker processes (default: one per core).")
 @click.option("--scheduler", default=None, metavar="tcp://HOST:PORT",
               help="Solve on a Dask distributed cluster instead of local processes.")
-@click.option("--out", "out", type=options.OutputFile((".npz",)), required=True, metavar="FILE",
-              help="Output map (.npz).")
+@click.option("--output", "-o", "out", type=options.OutputFile((".npz",)), default=None,
+              metavar="FILE.npz", help="Output map (.npz). Required.")
+@options.deprecated_alias("--out", "-o/--output")("out_old", type=options.OutputFile((".npz",)))
 @click.option("--plot", type=options.OutputFile((".png",)), default=None, metavar="PNG",
-              help="Also write the h(d, p) heatmap (written together with --out: both or "
+              help="Also write the h(d, p) heatmap (written together with -o: both or "
                    "neither).")
 @click.option("--cold-start", is_flag=True,
               help="Solve every point from the released state, exactly as a direct solve "
                    "(default: each diameter along increasing fill, warm-started from the "
                    "previous equilibrium).")
 @options.json_opt
-def precompute(material_path, diameters, fills, workers, scheduler, out, plot, cold_start,
-               as_json):
+def precompute(material_path, diameters, fills, workers, scheduler, out, out_old, plot,
+               cold_start, as_json):
     """Solve every (d, p) of the grid and write the design-space map.
 
     Every point is a certified solve; points that fail the neighbour-mean smoothness test are
     listed with their explanation (buckling onset, branch change, under-resolved).
     """
-    outputs = {"--out": out, "--plot": plot}
+    out = options.one_of(out, out_old, "-o/--output", "--out")
+    outputs = {"--output": out, "--plot": plot}
     check_distinct(outputs)
     material = DEFAULT_MATERIAL if material_path is None else load_material(material_path)
     d = build_map.parse_range(diameters, "--diameters")
@@ -61,7 +63,7 @@ def precompute(material_path, diameters, fills, workers, scheduler, out, plot, c
                                scheduler=scheduler, warm_start=not cold_start)
     elapsed_s = time.perf_counter() - t0
     with together(outputs) as tmp:
-        map_io.save_map(dmap, tmp["--out"])
+        map_io.save_map(dmap, tmp["--output"])
         if plot is not None:
             from stitchswitch.reduced.design_space.heatmap import plot_height_map
             plot_height_map(dmap, tmp["--plot"])

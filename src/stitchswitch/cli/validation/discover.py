@@ -28,15 +28,14 @@ def _effects(value):
 @click.command(cls=options.Command)
 @click.argument("data_arg", metavar="[DATA.csv]", required=False,
                 type=click.Path(dir_okay=False, path_type=pathlib.Path))
-@click.option("--data", "data_opt", metavar="FILE", default=None,
-              type=click.Path(dir_okay=False, path_type=pathlib.Path),
-              help="Measured-data CSV (the same as the DATA.csv argument).")
+@options.deprecated_alias("--data", "the DATA.csv argument")(
+    "data_opt", type=click.Path(dir_okay=False, path_type=pathlib.Path))
 @click.option("--demo", is_flag=True,
               help="Run the built-in SYNTHETIC case: data from the model with hardening switched "
                    "on, the workflow started from the model without it.")
 @options.material_opt
 @click.option("--effects", "effects", default=None, metavar="a,b,...",
-              help="Candidate effects (default: the whole library).")
+              help="Candidate effects [default: the whole library].")
 @click.option("--report", "report_dir", default=None, metavar="DIR",
               type=click.Path(path_type=pathlib.Path),
               help="Write report.md, report.html, report.json and PNG figures into DIR (new, "
@@ -45,18 +44,20 @@ def _effects(value):
               help="Write the result as JSON to OUT (atomically), or to stdout with no OUT or "
                    "'-' (then nothing else is printed on stdout).")
 @click.option("--workers", type=click.IntRange(min=1), default=None, metavar="N",
-              help="Worker processes for the solves (default: one per core).")
-@click.option("--folds", type=click.IntRange(min=2), default=5, show_default=True,
+              help="Worker processes for the solves [default: one per core].")
+@click.option("--folds", type=click.IntRange(min=2), default=5, show_default=True, metavar="K",
               help="K of the cross-validation.")
-@click.option("--alpha", type=options.FINITE_FLOAT, default=0.05, show_default=True,
+@click.option("--alpha", type=options.FINITE_FLOAT, default=0.05, show_default=True, metavar="A",
               help="Family-wise significance level.")
 @click.option("--de-generations", type=click.IntRange(min=0), default=0, show_default=True,
+              metavar="N",
               help="Differential-evolution generations before calibrating the starting model "
                    "(0: least squares from the starting material).")
 @click.option("--huber", type=click.FloatRange(min=0.0, min_open=True), default=None,
               metavar="C", help="Robust fit: Huber's loss at C robust sigmas (default: least "
                                 "squares); the down-weighted rows are listed.")
-@click.option("--seed", type=int, default=0, show_default=True)
+@click.option("--seed", type=int, default=0, show_default=True, metavar="N",
+              help="Seed of the cross-validation folds and the evolution.")
 def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_out, workers,
              folds, alpha, de_generations, huber, seed):
     """Find where the model and the data disagree, name the missing effect, add it, recalibrate
@@ -84,7 +85,7 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
         raise options.InputError("--demo: runs the built-in data and starting material; do not "
                                  "give DATA.csv, --data or --material with it")
     if not demo and len(given) != 1:
-        raise options.InputError("give the data as DATA.csv or --data FILE (once), or use --demo")
+        raise options.InputError("give the data as DATA.csv (once), or use --demo")
     config = DiscoveryConfig(effects=_effects(effects), folds=folds, alpha=alpha,
                              de_generations=de_generations, seed=seed, huber_c=huber)
     if report_dir is not None:

@@ -14,13 +14,21 @@ import math
 from dataclasses import asdict, dataclass, fields
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.check.rules import edge, features, geometry, hoop, spacing
+from stitchswitch.layout.check.rules import (
+    edge,
+    features,
+    geometry,
+    hoop,
+    hoopable,
+    model_range,
+    spacing,
+)
 from stitchswitch.layout.check.violation import Violation
 
 __all__ = ["Violation", "CheckLimits", "check_design", "RULES"]
 
 #: the rule modules of ``stitchswitch.layout.check.rules``, in report order
-RULES = (geometry, edge, spacing, features, hoop)
+RULES = (model_range, geometry, edge, spacing, features, hoop, hoopable)
 
 
 @dataclass(frozen=True)

@@ -1,5 +1,5 @@
 """One violation of the constraint check: its rule, severity, the patches and pieces involved,
-and the measured value against the limit (both in mm)."""
+the measured value against the limit (both in mm), and a hint at the fix."""
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
@@ -16,6 +16,7 @@ class Violation:
     value: float                   # measured, mm
     limit: float                   # the limit it breaks, mm
     message: str
+    hint: str = ""                 # what to change to clear it
 
     def as_dict(self) -> dict:
         d = asdict(self)

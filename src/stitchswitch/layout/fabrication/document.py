@@ -80,6 +80,8 @@ class HoopingFiles:
     embroidery: str
     png: str
     svg: str
+    template_a4: str | None = None       # garment mode: 1:1 printable templates (PDF)
+    template_letter: str | None = None
 
 
 @dataclass(frozen=True)
@@ -134,6 +136,8 @@ class HoopingDoc:
     colour_changes: int
     thread_length_m: float
     time_min: float
+    gap_crossings: int = 0          # thread laid over unstitched fabric (the stitch audit)
+    gap_crossing_mm: float = 0.0
 
     def as_dict(self) -> dict:
         d = {"number": self.number, "hoop": self.hoop, "field_mm": list(self.field_mm),
@@ -149,7 +153,8 @@ class HoopingDoc:
         d["threads"] = [t.as_dict() for t in self.threads]
         d.update(stitches=self.stitches, trims=self.trims, jumps=self.jumps,
                  colour_changes=self.colour_changes, thread_length_m=self.thread_length_m,
-                 time_min=self.time_min)
+                 time_min=self.time_min, gap_crossings=self.gap_crossings,
+                 gap_crossing_mm=self.gap_crossing_mm)
         return d
 
 

@@ -51,8 +51,9 @@ from stitchswitch.layout.fabrication.grouping.group import MODES, group
 from stitchswitch.layout.fabrication.grouping.result import Grouping
 from stitchswitch.layout.fabrication.layout_plot import alignment_marks, hooping_figure, overview_figure
 from stitchswitch.layout.fabrication.order import StitchingOrder, order_hoopings
-from stitchswitch.layout.fabrication.plan import plan_hooping
+from stitchswitch.layout.fabrication.plan import audit_hooping, plan_hooping
 from stitchswitch.layout.fabrication.sheet import html_page, markdown
+from stitchswitch.layout.fabrication.template import PAPERS, template_pdf
 
 GENERATOR = "stitchswitch fabricate"
 
@@ -68,6 +69,7 @@ class FabricateOptions:
     spacing_mm: float = 10.0          # free mode: gap between patches
     resolution_mm: float = 5.0        # triangle side of the patch tessellation
     force: bool = False
+    blank_margin_mm: float | None = None  # uncut blank past each piece (default: the design's)
 
 
 @dataclass(frozen=True, eq=False)
@@ -100,13 +102,17 @@ def _design_info(design) -> DesignFile:
     return DesignFile(os.path.basename(design.path), digest)
 
 
-def _instructions(mode: str, eta: float) -> list[str]:
+def _instructions(mode: str, eta: float, blank_mm: float = 0.0) -> list[str]:
     pct = f"{100 * eta:.0f} %"
     common = (f"Place the fabric over one sheet of water-soluble stabilizer and stretch it "
               f"uniformly to {eta:g}x in both directions ({pct} of its relaxed size; paper, "
               "appendix A); a drawn grid and pins keep the stretch even.")
     if mode == "garment":
-        return [
+        blank = ([f"Cut every piece as an uncut blank reaching {blank_mm:g} mm past its outline "
+                  "(relaxed fabric) and draw the outline on it: hoop frames may clamp the "
+                  "blank outside the outline. Cut the piece out after the last hooping."]
+                 if blank_mm > 0 else [])
+        return blank + [
             "Before stretching, draw the alignment marks of every hooping on the relaxed piece "
             "at the garment coordinates listed below (the hoop template's centre and side "
             f"marks divided by {eta:g}), and a reference grid.",
@@ -131,11 +137,12 @@ def _limits(doc_hoops, fmt: str, mode: str, grouping: Grouping) -> list[str]:
     out = ["Hoop margins and frame widths come from the machine catalogue; the built-in "
            "Janome 550E values are estimates, not measured on a real hoop (give yours with "
            "--machines).",
-           "Times count stitching only, at the machine's top speed; trims, colour changes, "
-           "bobbin changes and hooping add to them."]
+           "Times count stitching at the machine's top speed plus 6 s per trim and 60 s per "
+           "colour change; bobbin changes and hooping add to them."]
     if fmt == "jef" and any(h.jef_code is None for h in doc_hoops):
-        out.append("The JEF hoop code of the RE36b is not published: its files keep "
-                   "pyembroidery's size-based code (docs/embroidery.md).")
+        out.append("A hoop without a published JEF code (the RE36b) gets, in the file header, "
+                   "the smallest published hoop field that holds its stitches "
+                   "(docs/embroidery.md).")
     if mode == "garment":
         out.append("Garment coordinates times eta are taken as hoop coordinates: this assumes a "
                    "uniform stretch; check the marks after stretching.")
@@ -162,7 +169,7 @@ def fabricate(design, outdir, options: FabricateOptions = FabricateOptions(),
     hoops = _hoops(machine, design, options)
     fmt = export.get_format(options.fmt or machine.default_format)
     eta = float(design.material_object().eta)
-    feet, pieces = stretch(design, eta)
+    feet, pieces = stretch(design, eta, options.blank_margin_mm)
     grouping = group(feet, pieces, hoops, options.mode, options.time_limit_s, options.spacing_mm)
     order = order_hoopings(grouping.hoopings, feet)
     if geometry is None:
@@ -187,13 +194,22 @@ def fabricate(design, outdir, options: FabricateOptions = FabricateOptions(),
         stem = f"hoop{k:0{width}d}"
         hplan = plan_hooping(h, specs, cached, prm)
         names = {"embroidery": f"{stem}.{fmt.name}", "png": f"{stem}.png", "svg": f"{stem}.svg"}
-        files[names["embroidery"]] = export.encode(hplan.plan, fmt.name, h.hoop)
+        if h.piece is not None:                 # garment mode: the 1:1 templates
+            outline = design.piece(h.piece).outline_mm
+            for paper in PAPERS:
+                name = f"{stem}-template-{paper}.pdf"
+                names[f"template_{paper}"] = name
+                files[name] = template_pdf(k, h, outline, [specs[p] for p in h.patch_ids],
+                                           eta, paper)
+        files[names["embroidery"]] = export.encode(hplan.plan, fmt.name, h.hoop,
+                                                   label=_label(design, stem))
+        threads = audit_hooping(hplan, h, options.resolution_mm, prm.min_stitch_mm)
         conflict_ids = {c.patch for c in order.conflicts if c.hooping == k - 1}
         figs = hooping_figure(k, total, h, hplan, specs, feet, pieces, stitched, conflict_ids)
         files[names["png"]], files[names["svg"]] = figs["png"], figs["svg"]
         images[names["png"]] = files[names["png"]]
         stitched |= set(h.patch_ids)
-        doc_hoops.append(_hooping_doc(k, h, hplan, specs, eta, names))
+        doc_hoops.append(_hooping_doc(k, h, hplan, specs, eta, names, threads))
     for kind, data in overview_figure(order.hoopings, feet, pieces).items():
         files[f"overview.{kind}"] = data
     images["overview.png"] = files["overview.png"]
@@ -206,7 +222,19 @@ def fabricate(design, outdir, options: FabricateOptions = FabricateOptions(),
     return FabricationResult(str(outdir), grouping, order, tuple(sorted(files)), doc)
 
 
-def _hooping_doc(k, h, hplan, specs, eta, names) -> HoopingDoc:
+def _blank(design, options) -> float:
+    return float(design.blank_margin_mm if options.blank_margin_mm is None
+                 else options.blank_margin_mm)
+
+
+def _label(design, stem: str) -> str:
+    """The design label in the file header: the design file's name and the hooping."""
+    import os
+    base = "design" if design.path is None else os.path.splitext(os.path.basename(design.path))[0]
+    return f"{base} {stem}"
+
+
+def _hooping_doc(k, h, hplan, specs, eta, names, threads) -> HoopingDoc:
     plan = hplan.plan
     garment = h.piece is not None
     marks = h.to_piece(np.array(alignment_marks(h.hoop))) / eta if garment else None
@@ -226,7 +254,8 @@ def _hooping_doc(k, h, hplan, specs, eta, names) -> HoopingDoc:
         threads=tuple(Thread(t.role, t.colour, tuple(t.patches)) for t in hplan.threads),
         stitches=plan.stitch_count, trims=plan.trim_count, jumps=plan.jump_count,
         colour_changes=plan.color_changes, thread_length_m=_r(plan.thread_length_mm / 1000),
-        time_min=_r(plan.sewing_time_min, 2))
+        time_min=_r(plan.sewing_time_min, 2), gap_crossings=threads.gap_crossings,
+        gap_crossing_mm=_r(threads.gap_crossing_mm))
 
 
 def _doc(design, machine, fmt, options, eta, grouping, order, doc_hoops) -> FabricationDoc:
@@ -245,7 +274,8 @@ def _doc(design, machine, fmt, options, eta, grouping, order, doc_hoops) -> Fabr
         machine=MachineInfo(machine.name, machine.label, machine.stitches_per_minute,
                             machine.source),
         embroidery_format=fmt,
-        stretch=StretchInfo(_r(eta), tuple(_instructions(grouping.mode, eta))),
+        stretch=StretchInfo(_r(eta), tuple(_instructions(
+            grouping.mode, eta, _blank(design, options)))),
         grouping=g, order_exact=order.exact,
         conflicts=tuple(Conflict(c.hooping + 1, c.patch, c.stitched_in + 1)
                         for c in order.conflicts),

@@ -28,15 +28,21 @@ def _pyplot():
     return plt
 
 
+#: metadata that would make the bytes depend on the day or the library build, left out
+_NO_STAMP = {"svg": {"Date": None}, "png": {"Software": None},
+             "pdf": {"CreationDate": None, "Producer": None, "Creator": None}}
+
+
 def _save(fig, formats) -> dict[str, bytes]:
-    """The figure in every format of ``formats`` (png, svg); the figure is closed."""
+    """The figure in every format of ``formats`` (png, svg, pdf); the figure is closed."""
     out = {}
     try:
         for fmt in formats:
-            if fmt not in ("png", "svg"):
-                raise InvalidInputError(f"unsupported layout format {fmt!r}; supported: png, svg")
+            if fmt not in _NO_STAMP:
+                raise InvalidInputError(f"unsupported layout format {fmt!r}; supported: "
+                                        + ", ".join(_NO_STAMP))
             buf = io.BytesIO()
-            meta = {"Date": None} if fmt == "svg" else {"Software": None}
+            meta = _NO_STAMP[fmt]
             fig.savefig(buf, format=fmt, dpi=120, metadata=meta)
             out[fmt] = buf.getvalue()
     finally:

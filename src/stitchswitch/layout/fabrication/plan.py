@@ -105,6 +105,23 @@ def plan_hooping(hooping: Hooping, specs: dict, geometry, prm: st.StitchParams |
     return HoopingPlan(plan, tuple(uses), geoms)
 
 
+def audit_hooping(hplan: HoopingPlan, hooping: Hooping, resolution_mm: float,
+                  min_stitch_mm: float):
+    """The stitch audit (``sewing.audit``) of a hooping's plan over all its patches' triangles
+    in hoop coordinates: gap crossings, trims, short stitches, electrodes."""
+    from stitchswitch.layout.embroidery.sewing.audit import audit
+
+    pieces, conductive, centroids = [], [], []
+    for pid, xy in zip(hooping.patch_ids, hooping.positions_mm):
+        g = hplan.geometries[pid]
+        off = np.asarray(xy, dtype=float)
+        pieces += [np.asarray(p, dtype=float) + off for p in g.pieces_mm]
+        conductive.append(np.asarray(g.conductive, dtype=bool))
+        centroids.append(np.asarray(g.centroids_mm, dtype=float).reshape(-1, 2) + off)
+    return audit(hplan.plan, pieces, np.concatenate(conductive), np.concatenate(centroids),
+                 resolution_mm, min_stitch_mm)
+
+
 def _check_inside(plan: st.StitchPlan, hooping: Hooping) -> None:
     x0, y0, x1, y1 = plan.extents_mm()
     w, h = hooping.hoop.width_mm, hooping.hoop.height_mm

@@ -73,10 +73,16 @@ def _hooping_lines(h: HoopingDoc, mode: str, esc=str) -> list[str]:
             ("centre", "right", "top", "left", "bottom"), h.alignment_marks_garment_mm))
         lines.append(f"- alignment marks on the relaxed piece (mm), by hoop side: {marks}")
     lines.append(f"- file `{h.files.embroidery}`; layout `{h.files.png}`, `{h.files.svg}`")
+    if h.files.template_a4:
+        lines.append(f"- 1:1 template to print at 100 % and mark through: `{h.files.template_a4}` "
+                     f"(A4) or `{h.files.template_letter}` (Letter); check its 50 mm square")
     lines += [f"- thread: {_thread_text(t, esc)}" for t in h.threads]
     lines.append(f"- {h.stitches} stitches, {h.trims} trims, {h.colour_changes} colour "
                  f"change(s), {h.thread_length_m:.2f} m of top thread, about "
                  f"{_f(h.time_min)} min")
+    if h.gap_crossings:
+        lines.append(f"- {h.gap_crossings} thread crossing(s) over unstitched fabric "
+                     f"({h.gap_crossing_mm:.1f} mm of thread): clip them after stitching")
     return lines
 
 

@@ -125,13 +125,17 @@ class MachineSpec:
 @dataclass(frozen=True, eq=False)
 class Design(_ArrayEq):
     """A whole design. ``path`` is the file it was read from (None if built in memory); it is
-    not part of the file and not compared."""
+    not part of the file and not compared. ``blank_margin_mm`` (relaxed garment mm): 0 when
+    every piece is hooped already cut out (the hoop frame must clamp the piece itself); more
+    when each piece is hooped as an uncut blank extending that far past its outline, so a hoop
+    may reach over the outline onto the blank."""
     version: int
     pieces: tuple[PieceSpec, ...]
     patches: tuple[PatchSpec, ...]
     material: MaterialRef = field(default_factory=MaterialRef)
     machine: MachineSpec = field(default_factory=MachineSpec)
     path: str | None = None
+    blank_margin_mm: float = 0.0
 
     def __post_init__(self):
         object.__setattr__(self, "pieces", tuple(self.pieces))
@@ -142,7 +146,8 @@ class Design(_ArrayEq):
             return NotImplemented
         return (self.version == other.version and self.pieces == other.pieces
                 and self.patches == other.patches and self.material == other.material
-                and self.machine == other.machine)
+                and self.machine == other.machine
+                and self.blank_margin_mm == other.blank_margin_mm)
 
     __hash__ = None
 
@@ -157,7 +162,10 @@ class Design(_ArrayEq):
         for p in self.patches:
             if p.id == patch_id:
                 return p
-        raise InvalidInputError(f"no patch with id {patch_id!r}")
+        ids = [p.id for p in self.patches]
+        listed = ", ".join(ids[:20]) + (", ..." if len(ids) > 20 else "")
+        raise InvalidInputError(f"no patch with id {patch_id!r}; the patches are "
+                                + (listed or "(none)"))
 
     def with_patches(self, patches) -> "Design":
         """A copy with the patch list replaced (not validated: ``design_io.validate`` does)."""

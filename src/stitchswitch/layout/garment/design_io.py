@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 import os
+from dataclasses import replace
 
 import numpy as np
 
@@ -39,6 +40,7 @@ __all__ = ["load_design", "save_design", "design_from_dict", "design_to_dict", "
 
 DECIMALS = 6
 TOL_MM = 1e-6          # geometric tolerance of the validator: the rounding of the file
+MAX_BLANK_MARGIN_MM = 1000.0   # an uncut blank reaching a metre past its piece is a typo
 
 
 # --- reading ------------------------------------------------------------------------------
@@ -47,8 +49,7 @@ def load_design(path) -> Design:
     """Read and validate a design file; the material it names is loaded once to check it."""
     where = f"design file {os.fspath(path)!r}"
     design = design_from_dict(jc.load_file(path, where), where)
-    design = Design(design.version, design.pieces, design.patches, design.material,
-                    design.machine, path=os.fspath(path))
+    design = replace(design, path=os.fspath(path))
     try:
         design.material_object()
     except InvalidInputError as exc:
@@ -66,8 +67,7 @@ def design_from_dict(obj, source: str = "design") -> Design:
 def validate_design(design: Design, source: str = "design") -> Design:
     """Check an in-memory design by the file's rules (e.g. after placing patches)."""
     checked = design_from_dict(design_to_dict(design), source)
-    return Design(checked.version, checked.pieces, checked.patches, checked.material,
-                  checked.machine, design.path)
+    return replace(checked, path=design.path)
 
 
 def _design(obj, path) -> Design:
@@ -80,7 +80,8 @@ def _design(obj, path) -> Design:
     if isinstance(version, bool) or not isinstance(version, int) or version != VERSION:
         jc.fail(version_path, f"{jc.show(version)} is not a supported design file version "
                               f"(this stitchswitch reads version {VERSION})")
-    jc.obj(obj, path, required=("version", "pieces", "patches"), optional=("material", "machine"))
+    jc.obj(obj, path, required=("version", "pieces", "patches"),
+           optional=("material", "machine", "blank_margin_mm"))
     pieces_path, patches_path = child(path, "pieces"), child(path, "patches")
     pieces = tuple(jc.items(obj["pieces"], pieces_path, _piece))
     jc.unique([p.name for p in pieces], pieces_path, "name")
@@ -90,7 +91,9 @@ def _design(obj, path) -> Design:
     jc.unique([p.id for p in patches], patches_path, "id")
     material = _material(obj.get("material", {"name": "default"}), child(path, "material"))
     machine = _machine(obj.get("machine", {}), child(path, "machine"))
-    return Design(version, pieces, patches, material, machine)
+    blank = jc.number(obj.get("blank_margin_mm", 0.0), child(path, "blank_margin_mm"), low=0.0,
+                      high=MAX_BLANK_MARGIN_MM, unit="mm")
+    return Design(version, pieces, patches, material, machine, blank_margin_mm=blank)
 
 
 def _piece(obj, path) -> PieceSpec:
@@ -252,7 +255,7 @@ def _pts(arr) -> list:
 
 def design_to_dict(design: Design) -> dict:
     """The file's JSON object (documented key order, floats rounded to 1e-6)."""
-    return {
+    out = {
         "version": design.version,
         "pieces": [{"name": p.name, "size": p.size, "source": p.source,
                     "outline_mm": _pts(p.outline_mm)} for p in design.pieces],
@@ -261,6 +264,9 @@ def design_to_dict(design: Design) -> dict:
                      else {"name": design.material.name}),
         "machine": {"name": design.machine.name, "hoop": design.machine.hoop},
     }
+    if design.blank_margin_mm:                # written only when set: old files keep their bytes
+        out["blank_margin_mm"] = _r(design.blank_margin_mm)
+    return out
 
 
 def _patch_dict(p: PatchSpec) -> dict:

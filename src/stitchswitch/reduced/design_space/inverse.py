@@ -15,6 +15,13 @@ compatible parameter combinations".
    solves. The reported keypoints are those of the direct solve, and a suggestion whose
    certified h still misses the target by more than ``HEIGHT_TOL_MM`` (the target is out of
    reach at that diameter under the bounds) is dropped: up to ``count`` suggestions remain.
+
+Fabrication rules: ``admissible(d, p) -> str | None`` (for example the constraint check's
+feature-size and hoop-fit rules, ``layout.check.design_point``, which this layer cannot import)
+names the rule a design breaks. Grid designs that break one are left out of the selection (each
+diameter bin keeps its ``PER_BIN`` cheapest admissible designs), and a refined suggestion that
+breaks one is dropped. ``InverseResult.dropped`` says why each missing suggestion is missing, so
+fewer than ``count`` suggestions always come with reasons.
 """
 from __future__ import annotations
 
@@ -106,11 +113,34 @@ class InverseResult:
     candidates: list            # Candidate, best first
     achievable_h_mm: tuple      # range of h over the feasible grid designs
     selection: object           # inverse_mip.Selection: status, objective, solve time, gap
+    dropped: tuple = ()         # why designs were left out: one sentence each
+
+
+def _admissible_per_bin(idx, bins, cost, d, p, admissible):
+    """The ``PER_BIN`` cheapest designs of each bin that ``admissible`` accepts (all of them
+    without it), and the rules that cost designs (rule text -> count)."""
+    order = np.lexsort((cost[idx], bins))
+    if admissible is None:
+        rank = np.arange(order.size) - np.searchsorted(bins[order], bins[order])
+        return np.sort(idx[order[rank < PER_BIN]]), {}
+    keep, broken, taken = [], {}, {}
+    for j in order:
+        b = int(bins[j])
+        if taken.get(b, 0) >= PER_BIN:
+            continue
+        why = admissible(float(d[idx[j]]), float(p[idx[j]]))
+        if why is None:
+            keep.append(idx[j])
+            taken[b] = taken.get(b, 0) + 1
+        else:
+            broken[why] = broken.get(why, 0) + 1
+    return np.sort(np.asarray(keep, dtype=int)), broken
 
 
 def inverse_design(target: InverseTarget, dmap: DesignMap | None = None,
-                   force=None) -> InverseResult:
-    """Up to ``target.count`` confirmed designs, best first (see the module docstring)."""
+                   force=None, admissible=None) -> InverseResult:
+    """Up to ``target.count`` confirmed designs, best first (see the module docstring);
+    ``admissible(d, p)``: the fabrication rule a design breaks, or None."""
     from stitchswitch.reduced.design_space.cache import default_map
 
     dmap = dmap or default_map()
@@ -140,9 +170,13 @@ def inverse_design(target: InverseTarget, dmap: DesignMap | None = None,
     # feasible designs of each bin can be in the optimum; the program keeps those
     idx = np.nonzero(feasible)[0]
     bins = np.floor((d[idx] - dmap.diameter_mm[0]) / BIN_WIDTH_MM).astype(int)
-    order = np.lexsort((cost[idx], bins))
-    rank = np.arange(order.size) - np.searchsorted(bins[order], bins[order])
-    idx = np.sort(idx[order[rank < PER_BIN]])
+    idx, broken = _admissible_per_bin(idx, bins, cost, d, p, admissible)
+    dropped = [f"{n} grid design(s) near the target left out: {why}"
+               for why, n in sorted(broken.items())]
+    if not len(idx):
+        raise InvalidInputError(
+            f"no design under the constraints ({_bounds_text(target, dmap)}) passes the "
+            "fabrication rules: " + "; ".join(dropped))
     choice = select(cost[idx], d[idx], p[idx], F[idx], count=target.count,
                     bin_width_mm=BIN_WIDTH_MM, bin_origin_mm=dmap.diameter_mm[0],
                     d_max=d_max, p_min=p_min, force_range=(f_lo, f_hi))
@@ -151,17 +185,32 @@ def inverse_design(target: InverseTarget, dmap: DesignMap | None = None,
     for k in picks:
         dd, pp = _refine(dmap, target, d[k], p[k], d_max, p_min)
         cand = _confirm(dmap, target, dd, pp, force, p_min, extrapolates)
+        at = f"d = {cand.diameter_mm:.2f} mm, fill {cand.fill:.3f}"
         if cand.force_N < f_lo - 1e-12 or cand.force_N > f_hi + 1e-12:
+            dropped.append(f"{at}: force {cand.force_N:.3f} N outside the window")
             continue
         if abs(cand.height_error_mm) > HEIGHT_TOL_MM or not cand.converged:
-            continue                # the target is not reachable from this pick's diameter
+            # the target is not reachable from this pick's diameter
+            dropped.append(f"{at}: certified h misses the target by "
+                           f"{abs(cand.height_error_mm):.2f} mm" if cand.converged
+                           else f"{at}: the direct solve did not converge")
+            continue
+        why = None if admissible is None else admissible(cand.diameter_mm, cand.fill)
+        if why is not None:
+            dropped.append(f"{at} (refined): {why}")
+            continue
         out.append(cand)
     out.sort(key=lambda c: abs(c.height_error_mm) + abs(c.radius_error_mm or 0.0))
     distinct = []
     for c in out:               # refinements from neighbouring bins may meet at one design
         if all(abs(c.diameter_mm - o.diameter_mm) > 0.5 or abs(c.fill - o.fill) > 0.005 for o in distinct):
             distinct.append(c)
-    return InverseResult(distinct, (float(h_lo), float(h_hi)), choice)
+    if len(distinct) < len(out):
+        dropped.append(f"{len(out) - len(distinct)} refinement(s) met another suggestion")
+    if len(picks) < target.count:
+        dropped.append(f"the selection found {len(picks)} distinct diameter bin(s) of "
+                       f"{BIN_WIDTH_MM:g} mm under the bounds, fewer than the {target.count} asked")
+    return InverseResult(distinct, (float(h_lo), float(h_hi)), choice, tuple(dropped))
 
 
 def _refine(dmap, target, d0, p0, d_max, p_min):

@@ -39,5 +39,7 @@ def check(design, limits, eta) -> list[Violation]:
             RULE, "error", (patch.id,), (patch.piece,), clearance, margin,
             f"patch {patch.id} on piece {patch.piece}: {what}; keep {margin:g} mm (seam "
             f"allowance {limits.seam_allowance_mm:g} + edge clearance "
-            f"{limits.edge_clearance_mm:g})"))
+            f"{limits.edge_clearance_mm:g})",
+            f"move it at least {margin - clearance:.1f} mm away from the outline, onto the piece "
+            f"(stitchswitch edit DESIGN {patch.id} --at X,Y), or make it smaller"))
     return out

@@ -52,11 +52,13 @@ def check(design, limits, eta) -> list[Violation]:
                 "feature-side", "error", *ident, side, limits.min_side_mm,
                 f"patch {patch.id}: stitched triangles of side {side:.2f} mm (fill "
                 f"{patch.fill:g} at resolution {limits.resolution_mm:g} mm) are smaller than "
-                f"{limits.min_side_mm:g} mm"))
+                f"{limits.min_side_mm:g} mm",
+                "raise the fill or tessellate coarser (--resolution)"))
         if gap is not None and gap < limits.min_gap_mm - 1e-9:
             out.append(Violation(
                 "feature-gap", "warning", *ident, gap, limits.min_gap_mm,
                 f"patch {patch.id}: gaps of {gap:.2f} mm between triangles (fill {patch.fill:g} "
                 f"at resolution {limits.resolution_mm:g} mm) are narrower than "
-                f"{limits.min_gap_mm:g} mm and may close up: a coarser resolution widens them"))
+                f"{limits.min_gap_mm:g} mm and may close up",
+                "lower the fill, or tessellate coarser (--resolution): both widen the gaps"))
     return out

@@ -40,5 +40,7 @@ def check(design, limits, eta) -> list[Violation]:
             out.append(Violation(RULE, "error", (patch.id,), (patch.piece,), float("nan"),
                                  limits.resolution_mm,
                                  f"patch {patch.id}: cannot be tessellated at "
-                                 f"{limits.resolution_mm:g} mm: {g}"))
+                                 f"{limits.resolution_mm:g} mm: {g}",
+                                 "change the composite core, the conductive selection or the "
+                                 "resolution"))
     return out

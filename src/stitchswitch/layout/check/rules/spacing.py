@@ -31,5 +31,7 @@ def check(design, limits, eta) -> list[Violation]:
                 RULE, "error", (patches[a].id, patches[b].id), (piece.name,), g,
                 limits.min_spacing_mm,
                 f"patches {patches[a].id} and {patches[b].id} on piece {piece.name} {what} "
-                f"(relaxed fabric); keep {limits.min_spacing_mm:g} mm"))
+                f"(relaxed fabric); keep {limits.min_spacing_mm:g} mm",
+                f"move one of them {limits.min_spacing_mm - g:.1f} mm farther from the other "
+                f"(stitchswitch edit DESIGN {patches[b].id} --at X,Y)"))
     return out

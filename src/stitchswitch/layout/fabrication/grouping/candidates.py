@@ -4,7 +4,9 @@ A placement is a hoop type, an orientation (0 or 90 degrees) and the position of
 centre on the stretched piece. It *holds* patch i when the disc of i lies in the field shrunk by
 the margin: |x_i - cx| <= W/2 - r_i and |y_i - cy| <= H/2 - r_i (W x H the field minus margins
 in that orientation). It is *allowed* when the hoop's outer rectangle (field plus frame ring)
-lies inside the piece outline: the frame must clamp fabric all round.
+lies on the fabric: inside the piece outline, or inside the uncut blank around it when the piece
+is hooped as a blank (``StretchedPiece.blank_mm``); the frame must clamp fabric all round. Both
+tests and the search of step 3 are the constraint check's (``layout.check.rules.hoopable``).
 
 Enumeration (exact for the sets that can be held, before the piece-edge rule):
 
@@ -29,9 +31,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import shapely
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.layout.check.rules import hoopable
 from stitchswitch.layout.embroidery.hoop_spec import Hoop
 from stitchswitch.layout.fabrication.grouping import bitsets
 
@@ -53,15 +55,11 @@ class Candidates:
         return len(self.hoop_index)
 
 
-def _held(cx, cy, x, y, r, w, h):
-    """(len(cx), n) bool: placements at (cx, cy) hold discs (x, y, r)."""
-    return ((np.abs(x[None, :] - cx[:, None]) <= w / 2 - r[None, :] + TOL_MM)
-            & (np.abs(y[None, :] - cy[:, None]) <= h / 2 - r[None, :] + TOL_MM))
+_held = hoopable.held
 
 
 def _allowed(piece, cx, cy, ow, oh) -> np.ndarray:
-    boxes = shapely.box(cx - ow / 2, cy - oh / 2, cx + ow / 2, cy + oh / 2)
-    return np.asarray(shapely.contains(piece, boxes), dtype=bool)
+    return hoopable.allowed(piece, cx, cy, ow, oh)
 
 
 def ring_overlap(cx, cy, fw, fh, frame, x, y, r) -> np.ndarray:
@@ -118,28 +116,10 @@ def _choose_positions(members, x, y, r, hoop, o, piece):
     return out
 
 
-def _rescue(i, x, y, r, hoops, piece, step_mm=2.0):
-    """The allowed placement holding patch i and the most others (None if there is none)."""
-    best = None
-    for k, hoop, o in _variants(hoops):
-        w, h = hoop.usable_mm(o)
-        ow, oh = hoop.outer_mm(o)
-        if 2 * r[i] > min(w, h) + TOL_MM:
-            continue
-        sx, sy = w / 2 - r[i], h / 2 - r[i]
-        gx = np.linspace(x[i] - sx, x[i] + sx, max(2, int(np.ceil(2 * sx / step_mm)) + 1))
-        gy = np.linspace(y[i] - sy, y[i] + sy, max(2, int(np.ceil(2 * sy / step_mm)) + 1))
-        cx, cy = (a.ravel() for a in np.meshgrid(gx, gy))
-        ok = _allowed(piece, cx, cy, ow, oh)
-        if not ok.any():
-            continue
-        cx, cy = cx[ok], cy[ok]
-        held = _held(cx, cy, x, y, r, w, h)
-        j = int(np.argmax(held.sum(axis=1)))
-        score = (int(held[j].sum()), -hoop.area_mm2)
-        if best is None or score > best[0]:
-            best = (score, k, o, (float(cx[j]), float(cy[j])))
-    return None if best is None else best[1:]
+def _rescue(i, x, y, r, hoops, piece):
+    """The allowed placement holding patch i and the most others (None if there is none): the
+    check's own search (``layout.check.rules.hoopable``), so both agree on what can be hooped."""
+    return hoopable.best_placement(i, x, y, r, hoops, piece)
 
 
 def generate(feet, pieces, hoops: tuple[Hoop, ...]) -> Candidates:
@@ -156,10 +136,7 @@ def generate(feet, pieces, hoops: tuple[Hoop, ...]) -> Candidates:
         idx = np.flatnonzero(piece_of == pi)
         if not len(idx):
             continue
-        poly = shapely.Polygon(piece.outline_mm)
-        if not poly.is_valid:
-            poly = poly.buffer(0)
-        shapely.prepare(poly)
+        poly = hoopable.hoop_region(piece.outline_mm, piece.blank_mm)
         xs, ys, rs = x[idx], y[idx], r[idx]
         for k, hoop, o in _variants(hoops):
             w, h = hoop.usable_mm(o)
@@ -187,7 +164,9 @@ def generate(feet, pieces, hoops: tuple[Hoop, ...]) -> Candidates:
                 raise InvalidInputError(
                     f"patch {feet[i].id!r} cannot be hooped: it is too close to the edge of piece "
                     f"{piece.name!r} for any hoop field plus its frame ring to lie on the fabric "
-                    "(the frame must clamp fabric all round; see docs/fabrication.md)")
+                    "(the frame must clamp fabric all round; `stitchswitch check` names every "
+                    "such patch); move it inward or hoop the piece as an uncut blank "
+                    "(--blank-margin MM, docs/fabrication.md)")
             k, o, (cx, cy) = got
             rows.append((k, o, cx, cy, pi))
             held_any = _holds_of(rows, x, y, r, hoops, piece_of, n).any(axis=0)

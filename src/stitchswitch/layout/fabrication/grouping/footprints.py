@@ -32,14 +32,21 @@ class Footprint:
 class StretchedPiece:
     name: str
     outline_mm: np.ndarray           # (n, 2) stretched piece coordinates, last point not repeated
+    blank_mm: float = 0.0            # stretched mm the uncut blank extends past the outline
 
 
-def stretch(design, eta: float) -> tuple[tuple[Footprint, ...], tuple[StretchedPiece, ...]]:
-    """Footprints and pieces of a ``layout.garment.design.Design`` on fabric stretched by ``eta``."""
+def stretch(design, eta: float, blank_margin_mm: float | None = None
+            ) -> tuple[tuple[Footprint, ...], tuple[StretchedPiece, ...]]:
+    """Footprints and pieces of a ``layout.garment.design.Design`` on fabric stretched by ``eta``.
+    ``blank_margin_mm`` (relaxed mm; default the design's): how far each piece's uncut blank
+    extends past its outline."""
     if not (math.isfinite(eta) and eta >= 1.0):
         raise InvalidInputError(f"stretch eta = {eta!r} must be a finite number >= 1")
-    pieces = tuple(StretchedPiece(p.name, np.asarray(p.outline_mm, dtype=float) * eta)
-                   for p in design.pieces)
+    blank = design.blank_margin_mm if blank_margin_mm is None else float(blank_margin_mm)
+    if not (math.isfinite(blank) and blank >= 0):
+        raise InvalidInputError(f"blank margin {blank_margin_mm!r} mm must be a number >= 0")
+    pieces = tuple(StretchedPiece(p.name, np.asarray(p.outline_mm, dtype=float) * eta,
+                                  blank * eta) for p in design.pieces)
     feet = tuple(Footprint(p.id, p.piece, (p.centre_mm[0] * eta, p.centre_mm[1] * eta),
                            float(p.diameter_mm)) for p in design.patches)
     if not feet:

@@ -1,0 +1,117 @@
+"""Rule ``hoopable``: every patch can be hooped where it lies: some hoop of the design (its
+``machine.hoop``, else every hoop of its machine), in some orientation, holds the patch's disc
+inside its field minus the margin while the hoop's outer rectangle (field plus frame ring) lies
+on the fabric, so the frame clamps fabric all round.
+
+The fabric is the stretched piece (outline times eta), grown by the design's
+``blank_margin_mm`` times eta when the pieces are hooped as uncut blanks. The search is the
+one fabrication runs for a patch no other placement holds (``best_placement``: a 2 mm grid over
+every position holding the patch, for every hoop and orientation; ``can_hoop`` walks the same
+grid and stops at the first allowed position), and fabrication's candidate
+placements are built on the same ``hoop_region``, so ``check`` flags exactly the patches that
+``fabricate`` refuses as unhoopable. A patch too large for every hoop is the ``hoop-fit``
+rule's, not this one's.
+"""
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from stitchswitch.layout.check.rules.hoop import design_hoops
+from stitchswitch.layout.check.violation import Violation
+
+RULE = "hoopable"
+TOL_MM = 1e-9
+STEP_MM = 2.0
+
+
+def hoop_region(outline_mm, blank_mm: float = 0.0):
+    """The fabric a hoop frame may clamp: the (stretched) piece outline as a valid polygon,
+    grown by ``blank_mm`` when the piece is hooped as an uncut blank; prepared."""
+    poly = shapely.Polygon(np.asarray(outline_mm, dtype=float))
+    if not poly.is_valid:
+        poly = poly.buffer(0)
+    if blank_mm > 0:
+        poly = poly.buffer(float(blank_mm))
+    shapely.prepare(poly)
+    return poly
+
+
+def held(cx, cy, x, y, r, w, h):
+    """(len(cx), n) bool: hoop fields of usable size w x h centred at (cx, cy) hold the discs
+    (x, y, r)."""
+    return ((np.abs(x[None, :] - cx[:, None]) <= w / 2 - r[None, :] + TOL_MM)
+            & (np.abs(y[None, :] - cy[:, None]) <= h / 2 - r[None, :] + TOL_MM))
+
+
+def allowed(region, cx, cy, ow, oh) -> np.ndarray:
+    """(len(cx),) bool: the outer rectangles ow x oh centred at (cx, cy) lie on ``region``."""
+    boxes = shapely.box(cx - ow / 2, cy - oh / 2, cx + ow / 2, cy + oh / 2)
+    return np.asarray(shapely.contains(region, boxes), dtype=bool)
+
+
+def _grid(i, x, y, r, hoops, region, step_mm):
+    """Per hoop and orientation that can hold disc i: (k, o, w, h, cx, cy, allowed mask) over
+    the 2 mm grid of field centres holding it."""
+    for k, hoop in enumerate(hoops):
+        for o in hoop.orientations:
+            w, h = hoop.usable_mm(o)
+            ow, oh = hoop.outer_mm(o)
+            if 2 * r[i] > min(w, h) + TOL_MM:
+                continue
+            sx, sy = w / 2 - r[i], h / 2 - r[i]
+            gx = np.linspace(x[i] - sx, x[i] + sx, max(2, int(np.ceil(2 * sx / step_mm)) + 1))
+            gy = np.linspace(y[i] - sy, y[i] + sy, max(2, int(np.ceil(2 * sy / step_mm)) + 1))
+            cx, cy = (a.ravel() for a in np.meshgrid(gx, gy))
+            yield k, hoop, o, w, h, cx, cy, allowed(region, cx, cy, ow, oh)
+
+
+def can_hoop(i, x, y, r, hoops, region, step_mm: float = STEP_MM) -> bool:
+    """Whether ``best_placement`` finds a placement (the same grid; stops at the first)."""
+    return any(ok.any() for *_, ok in _grid(i, x, y, r, hoops, region, step_mm))
+
+
+def best_placement(i, x, y, r, hoops, region, step_mm: float = STEP_MM):
+    """The allowed placement holding disc i and the most others: (hoop index, orientation,
+    (cx, cy)), or None when no hoop can hold disc i on ``region``."""
+    best = None
+    for k, hoop, o, w, h, cx, cy, ok in _grid(i, x, y, r, hoops, region, step_mm):
+        if not ok.any():
+            continue
+        cx, cy = cx[ok], cy[ok]
+        got = held(cx, cy, x, y, r, w, h)
+        j = int(np.argmax(got.sum(axis=1)))
+        score = (int(got[j].sum()), -hoop.area_mm2)
+        if best is None or score > best[0]:
+            best = (score, k, o, (float(cx[j]), float(cy[j])))
+    return None if best is None else best[1:]
+
+
+def _fits_some_hoop(r: float, hoops) -> bool:
+    return any(2 * r <= min(h.usable_mm(o)) + TOL_MM for h in hoops for o in h.orientations)
+
+
+def check(design, limits, eta) -> list[Violation]:
+    hoops = design_hoops(design)
+    blank = design.blank_margin_mm
+    regions = {p.name: hoop_region(np.asarray(p.outline_mm) * eta, blank * eta)
+               for p in design.pieces}
+    out = []
+    for patch in design.patches:
+        x = np.array([patch.centre_mm[0] * eta])
+        y = np.array([patch.centre_mm[1] * eta])
+        r = np.array([patch.diameter_mm / 2.0])
+        if not _fits_some_hoop(float(r[0]), hoops):
+            continue                                  # the hoop-fit rule reports it
+        if can_hoop(0, x, y, r, hoops, regions[patch.piece]):
+            continue
+        frame = max(h.frame_width_mm for h in hoops)
+        hint = (f"move the patch inward, hoop the piece as an uncut blank (blank_margin_mm in "
+                f"the design file, or fabricate --blank-margin MM; now {blank:g} mm), or use "
+                "fabricate --mode free")
+        out.append(Violation(
+            RULE, "error", (patch.id,), (patch.piece,), float("nan"), frame,
+            f"patch {patch.id} cannot be hooped on piece {patch.piece}: no hoop field (minus "
+            f"its margin) holds it with the hoop's frame ring (up to {frame:g} mm) on the "
+            f"fabric all round", hint))
+    return out

@@ -1,0 +1,56 @@
+"""CLI conventions: every option of every command has help text, a metavar that is not
+click's type name, its default shown when it has one, -o/--output for output files, one
+spelling (color, center); the top-level help groups the commands by workflow."""
+import click
+import pytest
+from click.testing import CliRunner
+
+from stitchswitch.cli.main import COMMANDS, SECTIONS, cli
+
+#: commands whose options are owned elsewhere (being rewritten): checked for spelling only
+OTHERS = {"fem-check", "fem-solve", "switch-force"}
+
+
+def options_of(name):
+    cmd = cli.get_command(click.Context(cli), name)
+    return [p for p in cmd.params if isinstance(p, click.Option) and not p.hidden]
+
+
+@pytest.mark.parametrize("name", sorted(set(COMMANDS) - OTHERS))
+def test_every_option_is_documented(name):
+    for p in options_of(name):
+        where = f"{name} {p.opts[0]}"
+        assert p.help, f"{where}: no help text"
+        if not p.is_flag and not isinstance(p.type, click.Choice) and p.count is False:
+            assert p.metavar, f"{where}: click's metavar ({p.type.name.upper()}) would show"
+        if (p.default not in (None, False, ()) and not p.is_flag and p.required is False
+                and not callable(p.default) and repr(p.default) != "Sentinel.UNSET"):
+            assert p.show_default, f"{where}: default {p.default!r} not shown"
+
+
+@pytest.mark.parametrize("name", sorted(COMMANDS))
+def test_one_spelling_and_output_option(name):
+    for p in options_of(name):
+        for o in p.opts:
+            assert "colour" not in o and "centre" not in o, f"{name} {o}: spell color, center"
+            assert o != "--out", f"{name}: --out is -o/--output"
+
+
+def test_help_groups_commands_by_workflow():
+    out = CliRunner().invoke(cli, ["--help"]).output
+    heads = [line for line in out.splitlines() if line.startswith("Commands: ")]
+    assert heads == [f"Commands: {s}:" for s in SECTIONS]
+    listed = {n for names in SECTIONS.values() for n in names}
+    assert listed == set(COMMANDS)
+    for name in COMMANDS:
+        assert f"\n  {name} " in out
+
+
+def test_center_keeps_its_old_spelling_as_a_deprecated_alias(tmp_path):
+    path = tmp_path / "d.json"
+    run = CliRunner().invoke
+    assert run(cli, ["import", "--rectangle", "300x200", "-o", str(path)]).exit_code == 0
+    r = run(cli, ["place", str(path), "--piece", "rectangle", "--grid", "1x2", "--pitch", "60",
+                  "--centre", "150,100", "-d", "40", "-p", "0.7"])
+    assert r.exit_code == 0, r.output
+    assert "Warning: --centre is deprecated; use --center" in r.stderr
