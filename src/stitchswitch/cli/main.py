@@ -43,12 +43,12 @@ COMMANDS = {
 #: ``COMMANDS`` named in no section is listed under "other" (so registering one needs no edit
 #: here).
 SECTIONS = {
-    "design": ("import", "place", "edit", "remove", "check", "layout", "preview", "inverse",
-               "demo"),
+    "design": ("studio", "import", "place", "edit", "remove", "check", "layout", "preview",
+               "inverse", "demo"),
     "predict": ("simulate", "force", "sensitivity", "precompute"),
     "data": ("validate", "calibrate", "discover"),
     "fabricate": ("fabricate", "patch", "inspect"),
-    "reference": ("fem-check", "fem-solve", "switch-force"),
+    "reference": ("fem-check", "fem-solve", "switch-force", "bistability-map"),
 }
 
 
