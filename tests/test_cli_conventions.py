@@ -7,8 +7,8 @@ from click.testing import CliRunner
 
 from stitchswitch.cli.main import COMMANDS, SECTIONS, cli
 
-#: commands whose options are owned elsewhere (being rewritten): checked for spelling only
-OTHERS = {"fem-check", "fem-solve", "switch-force"}
+#: commands checked for spelling only (none)
+OTHERS = set()
 
 
 def options_of(name):

@@ -2,6 +2,8 @@
 (``status``). With ``-q`` a command prints its result only (and errors)."""
 from __future__ import annotations
 
+import sys
+
 import click
 
 #: Key in the root click context's ``meta``: the verbosity (count of -v minus count of -q).
@@ -33,8 +35,7 @@ def bar(length: int, label: str = "", **kwargs):
     """click's progress bar on stderr, or a silent stand-in under ``-q``."""
     if verbosity() < 0:
         return _NoBar(length, label)
-    return click.progressbar(length=length, label=label, file=click.get_text_stream("stderr"),
-                             **kwargs)
+    return click.progressbar(length=length, label=label, file=sys.stderr, **kwargs)
 
 
 def status(message: str) -> None:

@@ -45,9 +45,10 @@ def _source(source, rectangle, output):
 @click.argument("source", required=False, type=click.Path(dir_okay=False, exists=True))
 @click.option("--rectangle", default=None, metavar="WxH", help="Start from one rectangular piece, WIDTHxHEIGHT mm.")
 @click.option("-o", "--output", default=None, type=options.OutputFile((".json",), as_str=True),
-              help="Where a design started from a pattern or --rectangle is saved.")
-@click.option("--port", default=8765, show_default=True, type=click.IntRange(1, 65535))
-@click.option("--host", default="127.0.0.1", show_default=True,
+              metavar="FILE", help="Where a design started from a pattern or --rectangle is saved.")
+@click.option("--port", default=8765, show_default=True, type=click.IntRange(1, 65535), metavar="N",
+              help="Local port of the web page, in [1, 65535].")
+@click.option("--host", default="127.0.0.1", show_default=True, metavar="ADDRESS",
               help="Address to bind (anything but 127.0.0.1 exposes the studio to the network).")
 @click.option("--no-browser", is_flag=True, help="Do not open a browser.")
 @click.option("--recover", is_flag=True, help="Open the autosaved edits of DESIGN.json instead of the file.")

@@ -16,8 +16,10 @@ from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
 
 
 @click.command("fem-solve", cls=options.Command)
-@click.option("--diameter", "-d", "diameter_mm", type=options.FINITE_FLOAT, required=True, metavar="MM")
-@click.option("--fill", "-p", type=options.FINITE_FLOAT, required=True, metavar="P")
+@click.option("--diameter", "-d", "diameter_mm", type=options.FINITE_FLOAT, required=True, metavar="MM",
+              help="Patch diameter on the pre-stretched fabric (mm).")
+@click.option("--fill", "-p", type=options.FINITE_FLOAT, required=True, metavar="P",
+              help="Embroidery fill fraction, in (0, 1].")
 @options.material_opt
 @shell_options
 @click.option("--mesh", type=options.OutputFile(MESH_EXTENSIONS), default=None,

@@ -21,8 +21,10 @@ STIFFNESS = options.BoundedFloat(0.0, 1e5, low_open=True)
 
 
 @click.command("switch-force", cls=options.Command)
-@click.option("--diameter", "-d", "diameter_mm", type=options.FINITE_FLOAT, required=True, metavar="MM")
-@click.option("--fill", "-p", type=options.FINITE_FLOAT, required=True, metavar="P")
+@click.option("--diameter", "-d", "diameter_mm", type=options.FINITE_FLOAT, required=True, metavar="MM",
+              help="Patch diameter on the pre-stretched fabric (mm).")
+@click.option("--fill", "-p", type=options.FINITE_FLOAT, required=True, metavar="P",
+              help="Embroidery fill fraction, in (0, 1].")
 @options.material_opt
 @shell_options
 @click.option("--knit-stiffness", "knit_stiffness_n_per_m", type=STIFFNESS, default=200.0,
@@ -30,7 +32,7 @@ STIFFNESS = options.BoundedFloat(0.0, 1e5, low_open=True)
               help="Tensile membrane stiffness of the bare knit (N/m): the force scale "
               "(docs/force.md).")
 @click.option("--steps", type=click.IntRange(min=6, max=400), default=24, show_default=True,
-              help="Plate steps from the apex height h down to -1.5 h (the most it travels).")
+              metavar="N", help="Plate steps from the apex height h down to -1.5 h (the most it travels).")
 @click.option("--csv", "csv_path", type=options.OutputFile((".csv",)), default=None,
               metavar="FILE", help="Write the curve (w_mm, force_N) as CSV.")
 @click.option("--plot", type=options.OutputFile((".png",)), default=None,
