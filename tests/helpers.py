@@ -113,3 +113,22 @@ def solver_states(design, iterations):
         grad, hb = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
         fused.derivatives(r, z, coef, grad, hb, True)
         yield hb, grad, step.stationarity(grad, np.maximum(z[:-1] - z[1:], 0.0))[1]
+
+
+def cli_run(*args):
+    """Invoke the ``stitchswitch`` CLI in-process with every argument as a string."""
+    from click.testing import CliRunner
+
+    from stitchswitch.cli.main import cli
+
+    return CliRunner().invoke(cli, [str(a) for a in args])
+
+
+def panel_design(tmp_path, *place_args):
+    """A design file with one 300 x 200 mm rectangle named ``panel`` (``import``), and, given
+    ``place_args``, ``place`` run on it with those arguments."""
+    path = tmp_path / "d.json"
+    assert cli_run("import", "--rectangle", "300x200", "--name", "panel", "-o", path).exit_code == 0
+    if place_args:
+        assert cli_run("place", path, "--piece", "panel", *place_args).exit_code == 0
+    return path

@@ -2,22 +2,14 @@
 import json
 
 import pytest
-from click.testing import CliRunner
 
-from stitchswitch.cli.main import cli
-
-
-def run(*args):
-    return CliRunner().invoke(cli, [str(a) for a in args])
+from helpers import cli_run as run
+from helpers import panel_design
 
 
 @pytest.fixture
 def design(tmp_path):
-    path = tmp_path / "d.json"
-    assert run("import", "--rectangle", "300x200", "--name", "panel", "-o", path).exit_code == 0
-    assert run("place", path, "--piece", "panel", "--grid", "1x2", "--pitch", "80",
-               "-d", "40", "-p", "0.7").exit_code == 0
-    return path
+    return panel_design(tmp_path, "--grid", "1x2", "--pitch", "80", "-d", "40", "-p", "0.7")
 
 
 def patches(path):

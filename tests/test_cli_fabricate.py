@@ -4,15 +4,14 @@ import json
 import os
 
 import pytest
-from click.testing import CliRunner
 
-from stitchswitch.cli.main import cli
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery.patch_design import geometry_for
 from stitchswitch.layout.fabrication import fabricate as fab
 from stitchswitch.layout.garment.design_io import load_design
 
 from decoders import dst, jef
+from helpers import cli_run as run
 
 
 def patch(pid, x, y, d, p, conductive=None, top="#1b1b1b"):
@@ -36,8 +35,6 @@ SMALL = [patch("a", 60, 60, 24, 0.8, "ring:0"), patch("b", 110, 70, 20, 0.7),
          patch("c", 230, 180, 24, 0.9, None, "#204080")]
 
 
-def run(*args):
-    return CliRunner().invoke(cli, [str(a) for a in args])
 
 
 def leftovers(folder):

@@ -7,13 +7,12 @@ from stitchswitch.cli.main import cli
 from stitchswitch.layout.garment.design_io import load_design
 
 from helpers import EXTERNAL
+from helpers import cli_run as run
 
 DXF = EXTERNAL / "dxf"
 IN = 25.4
 
 
-def run(*args):
-    return CliRunner().invoke(cli, [str(a) for a in args])
 
 
 def test_rectangle(tmp_path):

@@ -1,21 +1,14 @@
 """stitchswitch layout: the 2D view of a design (PNG, SVG, PDF), deterministic, with the
 pieces, patch ids, axes in mm, heights and violations."""
 import pytest
-from click.testing import CliRunner
 
-from stitchswitch.cli.main import cli
-
-
-def run(*args):
-    return CliRunner().invoke(cli, [str(a) for a in args])
+from helpers import cli_run as run
+from helpers import panel_design
 
 
 @pytest.fixture
 def design(tmp_path):
-    path = tmp_path / "d.json"
-    assert run("import", "--rectangle", "300x200", "--name", "panel", "-o", path).exit_code == 0
-    assert run("place", path, "--piece", "panel", "--at", "150,100", "-d", "60",
-               "-p", "0.7").exit_code == 0
+    path = panel_design(tmp_path, "--at", "150,100", "-d", "60", "-p", "0.7")
     assert run("place", path, "--piece", "panel", "--at", "20,20", "-d", "40", "-p", "0.7",
                "--id-prefix", "edge").exit_code == 0
     return path

@@ -1,20 +1,15 @@
 """stitchswitch place: at a point, on a grid, along a polyline; in place or to -o; errors."""
 import pytest
-from click.testing import CliRunner
 
-from stitchswitch.cli.main import cli
 from stitchswitch.layout.garment.design_io import load_design
 
-
-def run(*args):
-    return CliRunner().invoke(cli, [str(a) for a in args])
+from helpers import cli_run as run
+from helpers import panel_design
 
 
 @pytest.fixture
 def design(tmp_path):
-    path = tmp_path / "d.json"
-    assert run("import", "--rectangle", "300x200", "--name", "panel", "-o", path).exit_code == 0
-    return path
+    return panel_design(tmp_path)
 
 
 def test_at_grid_along_in_place(design):

@@ -5,15 +5,11 @@ import re
 import meshio
 import numpy as np
 import pytest
-from click.testing import CliRunner
 from PIL import Image
 
 from stitchswitch import Patch, solve
-from stitchswitch.cli.main import cli
 
-
-def run(*args):
-    return CliRunner().invoke(cli, [str(a) for a in args])
+from helpers import cli_run as run
 
 
 def design_file(tmp_path, edge_patch=False):

@@ -3,18 +3,13 @@ edited by hand): import a size, place three patches by target height, move one w
 check flags exactly what fabricate refuses, the fix clears it, fabricate succeeds."""
 import json
 
-from click.testing import CliRunner
-
-from stitchswitch.cli.main import cli
-
 from helpers import EXTERNAL
+from helpers import cli_run as run
 
 TANK = EXTERNAL / "dxf" / "WM_LOOSE_SHAPE_TANK_AAMA.DXF"
 PIECE = "RELAXED TANK FR V2"
 
 
-def run(*args):
-    return CliRunner().invoke(cli, [str(a) for a in args])
 
 
 def test_tank_workflow(tmp_path):
