@@ -67,7 +67,11 @@ def _pyvista():
     return pv
 
 
-def _polylines(pv, lines):
+def polylines(pv, lines):
+    """The scene's polylines (``scene.Polyline``) as one pyvista PolyData of line cells (empty
+    PolyData for none): the preview's render and the studio's 3D view draw the same lines."""
+    if not lines:
+        return pv.PolyData()
     pts = np.vstack([ln.points for ln in lines])
     cells, start = [], 0
     for ln in lines:
@@ -118,7 +122,7 @@ def render_scene(scene, options: RenderOptions = RenderOptions(), status=None):
         for kind, colour, width in (("piece", "black", 2.0), ("patch", "#404040", 1.0)):
             group = [ln for ln in scene.lines if ln.kind == kind]
             if group:
-                lines = _polylines(pv, group)
+                lines = polylines(pv, group)
                 lines.points = lines.points + lift
                 pl.add_mesh(lines, color=colour, line_width=width, lighting=False)
         cam = pl.camera

@@ -4,23 +4,10 @@ view (trame's VTK local view) only receives the new arrays.
 """
 from __future__ import annotations
 
-import numpy as np
-
 from stitchswitch.preview3d import colours
+from stitchswitch.preview3d.render import polylines
 from stitchswitch.preview3d.scene import build_scene
 from stitchswitch.preview3d.spec import spec_from_design
-
-
-def _polylines(pv, lines):
-    if not lines:
-        return pv.PolyData()
-    pts = np.vstack([ln.points for ln in lines])
-    cells, start = [], 0
-    for ln in lines:
-        n = len(ln.points)
-        cells.append(np.concatenate([[n], np.arange(start, start + n)]))
-        start += n
-    return pv.PolyData(pts, lines=np.concatenate(cells))
 
 
 class Scene3D:
@@ -42,5 +29,5 @@ class Scene3D:
         if len(tris):
             new.point_data["height (mm)"] = data["height_mm"]
         self.surface.copy_from(new)
-        self.lines.copy_from(_polylines(pv, list(scene.lines)))
+        self.lines.copy_from(polylines(pv, list(scene.lines)))
         self.clim = colours.height_clim(scene)

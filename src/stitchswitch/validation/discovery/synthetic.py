@@ -46,8 +46,9 @@ N_VAL = 28
 #: Hidden sources besides the library effects (None: no hidden effect).
 SOURCES = ("gravity_sag", "fem_shell")
 FEM_POISSON = 0.3
-#: A solve whose certificate misses the default 1e-11 but is at most this (a stiff hardening
-#: term can stall Newton just above it) is accepted for data generation.
+#: A solve whose certificate is at most this but that is not certified (no strict local minimum
+#: was shown, or a stiff hardening term stalled Newton at its round-off floor) is accepted for
+#: data generation; it equals the solver's default tolerance.
 NEAR_CONVERGED = 1e-9
 
 
