@@ -76,3 +76,10 @@ def test_unknown_piece_and_bad_design(design, tmp_path):
     bad.write_text('{"version": 3}')
     r = run("place", bad, "--piece", "panel", "--at", "1,2", "-d", "40", "-p", "1")
     assert r.exit_code == 2 and "version: 3 is not a supported design file version" in r.output
+
+
+def test_an_output_that_is_not_json_is_refused_before_placing(design, tmp_path):
+    before = design.read_bytes()
+    r = run("place", design, "--piece", "panel", "--at", "60,50", "-o", tmp_path / "out.yaml")
+    assert r.exit_code == 2 and "use .json" in r.stderr and len(r.stderr.splitlines()) == 1
+    assert design.read_bytes() == before and not (tmp_path / "out.yaml").exists()

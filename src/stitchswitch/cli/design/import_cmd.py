@@ -40,7 +40,8 @@ def _rectangle(text: str) -> tuple[float, float]:
               help="Only these pieces (default: every piece of the size).")
 @click.option("--units", type=click.Choice(sorted(UNITS)), default=None,
               help="Units of a DXF file that does not state them.")
-@click.option("--output", "-o", type=options.OutputFile(as_str=True), required=True, metavar="FILE",
+@click.option("--output", "-o", type=options.OutputFile((".json",), "a design file is JSON", as_str=True),
+              required=True, metavar="FILE",
               help="The design file to write.")
 def import_cmd(pattern, rectangle, name, size, pieces, units, output):
     """Write a new design file (no patches yet) holding the pieces of the DXF PATTERN (AAMA/ASTM

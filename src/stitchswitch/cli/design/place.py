@@ -76,7 +76,8 @@ def _grid(text: str) -> tuple[int, int]:
               help="The stable state shown in previews.")
 @click.option("--id-prefix", default="p", show_default=True, metavar="PREFIX",
               help="New ids are PREFIX1, PREFIX2, ... after the largest in use.")
-@click.option("--output", "-o", type=options.OutputFile(as_str=True), default=None, metavar="FILE",
+@click.option("--output", "-o", type=options.OutputFile((".json",), "a design file is JSON", as_str=True),
+              default=None, metavar="FILE",
               help="Write the result here [default: update DESIGN in place, atomically].")
 def place(design, piece, at, grid, centre, centre_old, along, pitch_mm, diameter_mm, fill, height_mm,
           radius_mm, max_diameter_mm, min_fill, conductive, state, id_prefix, output):

@@ -25,7 +25,8 @@ log = logging.getLogger(__name__)
 @options.solver_opt
 @options.max_iter_opt
 @options.json_opt
-@click.option("--profile-csv", type=options.OutputFile(as_str=True), default=None, metavar="FILE",
+@click.option("--profile-csv", type=options.OutputFile((".csv",), "the profile is written as CSV", as_str=True),
+              default=None, metavar="FILE",
               help="Also write the profile (columns R_mm,r_mm,z_mm) to FILE.")
 def simulate(diameter_mm, fill, material_path, solver, max_iter, as_json, profile_csv):
     """Equilibrium profile of one circular patch (default: d = 40 mm, fill = 0.8).
