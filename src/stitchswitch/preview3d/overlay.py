@@ -56,7 +56,7 @@ def annotate(image: np.ndarray, camera: Camera, size: tuple[int, int], labels, n
              usable: float = 1.0) -> np.ndarray:
     """``image`` (H, W, 3) with the ``labels`` ((text, (x, y, z)) in the world coordinates
     drawn, already exaggerated) above their points (those in the ``usable`` left part of the
-    width), a scale bar on a white box at the bottom left and ``note`` at the top left."""
+    width), a scale bar at the bottom left and ``note`` at the top left, both on white boxes."""
     from PIL import Image, ImageDraw
 
     w, h = size
@@ -83,5 +83,7 @@ def annotate(image: np.ndarray, camera: Camera, size: tuple[int, int], labels, n
         draw.line([(x, y0 - tick), (x, y0 + tick)], fill=(0, 0, 0), width=max(1, width // 2))
     draw.text(((x0 + x1) / 2, y0 - tick - 2), f"{length:g} mm", font=small, fill=(0, 0, 0),
               anchor="md")
+    left, top, right, bottom = draw.textbbox((x0, round(0.03 * h)), note, font=small, anchor="la")
+    draw.rectangle([left - pad, top - pad, right + pad, bottom + pad], fill=(255, 255, 255))
     draw.text((x0, round(0.03 * h)), note, font=small, fill=(0, 0, 0), anchor="la")
     return np.asarray(img, dtype=np.uint8)

@@ -11,8 +11,8 @@ or one piece, or one patch); heights can be exaggerated by a factor K, applied t
 geometry only (the colours, the colour bar and the exported mesh keep the true heights) and
 stated on the image; the surface is lit by a key light from the upper left of the image, 35
 degrees off the view axis, which shades the slopes of a dome facing it and facing away from it
-differently from the flat fabric, plus a weak headlight so that no slope is black; the patch ids, a scale bar and the height scale are drawn
-on the image (``overlay``).
+differently from the flat fabric, plus a weak headlight so that no slope is black; the patch
+ids, a scale bar and the height scale are drawn on the image (``overlay``).
 """
 from __future__ import annotations
 
