@@ -17,7 +17,9 @@ bytes must decode with pyembroidery to the plan's stitch count), and measured
 count and length outside the stitched pieces), trims, stitches < 0.3 mm outside ties, ties and
 their fewest stitches and shortest stitch, the stitch-graph components of each electrode (1 =
 one continuous conductor), and the largest difference between the header extents and the
-decoded stitch bounds relative to the hoop centre in JEF and DST (mm).
+decoded stitch bounds relative to the hoop centre in JEF and DST (mm). The totals line also
+counts the designs whose JEF, read back by pyembroidery, names the threads (palette name and
+Janome number per colour block) that ``layout.embroidery.jef_palette`` names for them.
 
 Targets: per design, gap-crossing length at most half of the "before" table's at no more trims
 in total; 0 short stitches; every tie >= 3 stitches; every electrode 1 component; header errors
@@ -84,6 +86,18 @@ def _stitch_count(data: bytes, fmt: str) -> int:
     return sum(1 for s in pattern.stitches if s[2] & pe.COMMAND_MASK == pe.STITCH)
 
 
+def jef_threads_as_named(data: bytes, plan) -> bool:
+    """Whether the threads pyembroidery's reader finds in the JEF (palette name and Janome
+    number per colour block) are those ``jef_palette`` names for the plan's threads (what the
+    fabrication sheet and ``stitchswitch patch`` print)."""
+    import pyembroidery as pe
+
+    from stitchswitch.layout.embroidery.jef_palette import jef_threads
+    read = pe.read_jef(io.BytesIO(data), {"trims": True}).threadlist
+    named = jef_threads([t.rgb for t in plan.threads])
+    return [(t.description, t.catalog_number) for t in read] == [(t.name, t.number) for t in named]
+
+
 def run_one(design, travel: str = "stitch") -> dict:
     from stitchswitch.layout.embroidery import export
     from stitchswitch.layout.embroidery.machines import default_machine
@@ -108,7 +122,8 @@ def run_one(design, travel: str = "stitch") -> dict:
                 "max_components": max(a.electrode_components, default=0),
                 "jef_header_err_mm": round(header_error_mm(files["jef"], "jef"), 2),
                 "dst_header_err_mm": round(header_error_mm(files["dst"], "dst"), 2),
-                "all_formats_decode": decodes})
+                "all_formats_decode": decodes,
+                "jef_threads_as_named": jef_threads_as_named(files["jef"], plan)})
     return row
 
 
@@ -133,7 +148,8 @@ def table(rows) -> str:
     lines.append(f"\ntotal: {sum(r['gap_crossings'] for r in rows)} crossings, {total_mm:.1f} mm; "
                  f"{sum(r['trims'] for r in rows)} trims; "
                  f"{sum(r['short_stitches'] for r in rows)} short stitches; all formats decode: "
-                 f"{all(r['all_formats_decode'] for r in rows)}")
+                 f"{all(r['all_formats_decode'] for r in rows)}; JEF threads as named: "
+                 f"{sum(r['jef_threads_as_named'] for r in rows)}/{len(rows)}")
     return "\n".join(lines)
 
 

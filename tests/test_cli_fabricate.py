@@ -70,7 +70,8 @@ def test_garment_outputs_match_the_plan(tmp_path):
         assert b"<svg" in (out / h["files"]["svg"]).read_bytes()[:500]
     md = (out / "fabrication.md").read_text()
     assert "stretch it uniformly to 1.7x in both directions" in md
-    assert "conductive #b0b0b0 (conductive thread in the bobbin" in md
+    assert ("conductive Pale Sky, Janome 216 (JEF colour 21, design colour #b0b0b0) "
+            "(conductive thread in the bobbin") in md
     assert "860 stitches/min" in md
     page = (out / "fabrication.html").read_text()
     assert page.count("data:image/png;base64,") == n + 1 and "http" not in page.replace(

@@ -95,12 +95,23 @@ def test_single_patch_view(tmp_path):
     (["-d", "40", "-p", "1.4"], "fill: 1.4 is outside (0, 1]"),
     (["OUT/missing.json"], "missing.json"),
     (["DESIGN", "--material", "m.json"], "--material is for the single-patch view"),
+    (["DESIGN", "--patch", "nope"], "--patch: OUT/../design.json has no patch 'nope'; its patches: big, small"),
+    (["DESIGN", "--piece", "back"], "has no piece 'back'; its pieces: front"),
+    (["DESIGN", "--piece", "front", "--patch", "big"], "give --piece or --patch, not both"),
+    (["DESIGN", "--view", "section"], "--view section needs --patch ID"),
+    (["DESIGN", "--view", "section", "--patch", "big", "--color", "violations"],
+     "--color violations applies to the 3D views"),
+    (["DESIGN", "--exaggerate", "0.5"], "'--exaggerate': 0.5 is outside [1, 50]"),
+    (["DESIGN", "--exaggerate", "nan"], "'--exaggerate'"),
+    (["-d", "40", "-p", "0.8", "--patch", "big"], "--patch applies to the 3D preview"),
+    (["-d", "40", "-p", "0.8", "--exaggerate", "2"], "--exaggerate applies to the 3D preview"),
 ])
 def test_bad_input_is_one_line_and_writes_nothing(tmp_path, args, message):
     design = design_file(tmp_path)
     out = tmp_path / "out"
     out.mkdir()
     args = [str(design) if a == "DESIGN" else a.replace("OUT", str(out)) for a in args]
+    message = message.replace("OUT/../design.json", str(design))
     if "-o" not in args:
         args += ["-o", str(out / "p.png")]
     r = run("preview", *args)
@@ -108,3 +119,23 @@ def test_bad_input_is_one_line_and_writes_nothing(tmp_path, args, message):
     assert message in r.output and "Traceback" not in r.output
     assert len(r.output.strip().splitlines()) == 1
     assert list(out.iterdir()) == []
+
+
+def test_framing_exaggeration_and_section_view(tmp_path):
+    design = design_file(tmp_path)
+    png = tmp_path / "p.png"
+    r = run("preview", design, "-o", png, "--size", "320x240", "--patch", "big", "--exaggerate", "2")
+    assert r.exit_code == 0, r.output
+    assert "iso, 320x240 px, colour by height, framed on patch big, heights x 2" in r.output
+    framed = png.read_bytes()
+    assert run("preview", design, "-o", png, "--size", "320x240").exit_code == 0
+    assert png.read_bytes() != framed
+    r = run("preview", design, "-o", png, "--size", "500x300", "--view", "section", "--patch",
+            "small", "--exaggerate", "3", "--mesh", tmp_path / "m.vtu")
+    assert r.exit_code == 0, r.output
+    assert "section through patch small, 500x300 px, heights x 3" in r.output
+    img = np.asarray(Image.open(png))
+    assert img.shape[:2] == (300, 500) and len(np.unique(img.reshape(-1, img.shape[2]), axis=0)) > 20
+    mesh = meshio.read(tmp_path / "m.vtu")                 # the mesh keeps the true heights
+    assert mesh.points[mesh.point_data["patch_index"] == 1, 2].min() == pytest.approx(
+        -solve(Patch(40.0, 0.8)).keypoints.h_mm, abs=0.01)

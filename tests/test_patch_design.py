@@ -92,3 +92,27 @@ def test_self_intersecting_outline_is_an_error():
     bow = np.array([[-20, -20], [20, 20], [20, -20], [-20, 20]], dtype=float)
     with pytest.raises(InvalidInputError, match="outline"):
         geometry_for(spec(60, 0.5, core=(10, 1.0), outline=bow))
+
+
+@pytest.mark.parametrize("core", [None, (20.0, 1.0)])
+def test_a_conductive_selection_that_selects_nothing_is_an_error(core):
+    with pytest.raises(InvalidInputError, match="conductive 'ring:99' selects no triangle"):
+        geometry_for(spec(core=core, conductive="ring:99"), 5.0)
+    assert geometry_for(spec(core=core, conductive="ring:0"), 5.0).conductive.any()
+
+
+def test_the_check_and_fabricate_refuse_an_empty_conductive_selection(tmp_path):
+    import json
+
+    from helpers import cli_run
+
+    obj = {"version": 1, "pieces": [{"name": "front", "outline_mm": [[0, 0], [200, 0],
+                                                                    [200, 150], [0, 150]]}],
+           "patches": [{"id": "a", "piece": "front", "centre_mm": [60, 60], "diameter_mm": 24,
+                        "fill": 0.8, "conductive": "ring:99"}]}
+    path = tmp_path / "d.json"
+    path.write_text(json.dumps(obj))
+    r = cli_run("check", path)
+    assert r.exit_code == 1 and "conductive 'ring:99' selects no triangle" in r.output
+    r = cli_run("fabricate", path, "-o", tmp_path / "out")
+    assert r.exit_code == 2 and not (tmp_path / "out").exists()

@@ -6,7 +6,7 @@ import pytest
 
 from stitchswitch import InvalidInputError, Patch, solve
 from stitchswitch.preview3d import colours, fabric, mesh_io, render, single, surfaces
-from stitchswitch.preview3d.camera import fit_camera, world_to_pixel
+from stitchswitch.preview3d.camera import fit_camera, frame_points, world_to_pixel
 from stitchswitch.preview3d.profiles import patch_profiles, single_profile
 from stitchswitch.preview3d.scene import build_scene
 from stitchswitch.preview3d.spec import PreviewPatch, PreviewPiece, PreviewSpec
@@ -104,11 +104,12 @@ def _cmap_rgb(value, clim):
 
 
 def test_top_view_shows_each_patch_in_its_colour_where_it_is(scene):
-    opts = render.RenderOptions(view="top", size=SIZE, lighting=False, legend=False)
+    opts = render.RenderOptions(view="top", size=SIZE, lighting=False, legend=False,
+                                piece="front", annotate=False)
     image, camera = render.render_scene(scene, opts)
     assert image.shape == (SIZE[1], SIZE[0], 3)
     assert len(np.unique(image.reshape(-1, 3), axis=0)) > 50        # not blank
-    assert camera == fit_camera(scene.all_points(), "top", SIZE, usable=1.0)
+    assert camera == fit_camera(frame_points(scene, piece="front"), "top", SIZE, usable=1.0)
     clim = colours.height_clim(scene)
     for p in scene.patches:
         col, row = np.round(world_to_pixel(camera, SIZE, [[*p.surface.centre_mm, 0.0]])[0]).astype(int)
@@ -232,3 +233,119 @@ def test_custom_outline_is_drawn_on_the_surface():
     circle = surfaces.boundary_line(prof, (0.0, 0.0), "down", 1.7)
     assert np.hypot(circle[:, 0], circle[:, 1]) == pytest.approx(prof.keypoints.r_a_mm)
     assert circle[:, 2] == pytest.approx(-prof.keypoints.z_a_mm)
+
+
+# --- reading as 3D: framing, exaggeration, colour bar, annotations, section -----------------
+
+def _inside(camera, size, points, usable=1.0):
+    px = world_to_pixel(camera, size, points)
+    w, h = size
+    return bool(np.all((px[:, 0] >= 0) & (px[:, 0] <= usable * w) & (px[:, 1] >= 0)
+                       & (px[:, 1] <= h)))
+
+
+@pytest.mark.parametrize("view", ["iso", "top", "side"])
+def test_the_camera_frames_the_patches_a_patch_or_a_piece(scene, view):
+    patches = np.vstack([p.surface.points for p in scene.patches])
+    big = scene.patches[0].surface.points
+    default = render.render_scene(scene, render.RenderOptions(view=view, size=SIZE))[1]
+    assert _inside(default, SIZE, patches, render.USABLE)
+    one = render.render_scene(scene, render.RenderOptions(view=view, size=SIZE, patch="big"))[1]
+    assert _inside(one, SIZE, big, render.USABLE) and not _inside(one, SIZE, patches)
+    px = world_to_pixel(one, SIZE, big)
+    assert np.ptp(px[:, 0]) > 0.6 * render.USABLE * SIZE[0] or np.ptp(px[:, 1]) > 0.6 * SIZE[1]
+    piece = render.render_scene(scene, render.RenderOptions(view=view, size=SIZE, piece="front"))[1]
+    assert _inside(piece, SIZE, scene.pieces[0].points, render.USABLE)
+    assert piece.parallel_scale > default.parallel_scale > one.parallel_scale
+
+
+def test_a_small_patch_on_a_large_piece_fills_the_default_frame():
+    piece = PreviewPiece("panel", np.array([[0, 0], [520, 0], [520, 400], [0, 400]], float))
+    scene = build_scene(PreviewSpec((piece,), (PreviewPatch("pocket", (260.0, 200.0), 90.0, 1.0),)))
+    camera = render.render_scene(scene, render.RenderOptions(size=(1000, 700)))[1]
+    px = world_to_pixel(camera, (1000, 700), scene.patches[0].surface.points)
+    assert np.ptp(px[:, 0]) > 0.6 * render.USABLE * 1000          # was about 90 px of 1000
+
+
+def test_frame_points_refuses_unknown_names(scene):
+    with pytest.raises(InvalidInputError, match="no patch 'nope' in the design; it has big, small, down"):
+        frame_points(scene, patch="nope")
+    with pytest.raises(InvalidInputError, match="no piece 'back' in the design; it has front"):
+        frame_points(scene, piece="back")
+    with pytest.raises(InvalidInputError, match="not both"):
+        render.RenderOptions(piece="front", patch="big")
+
+
+def test_exaggeration_stretches_the_drawn_heights_only(scene):
+    opts = dict(view="side", size=SIZE, patch="big", annotate=False)
+    flat, cam1 = render.render_scene(scene, render.RenderOptions(**opts))
+    tall, cam3 = render.render_scene(scene, render.RenderOptions(exaggerate=3.0, **opts))
+    assert not np.array_equal(flat, tall)
+    h = scene.patches[0].height_mm
+    top1 = world_to_pixel(cam1, SIZE, [[50.0, 60.0, h]])[0, 1]
+    top3 = world_to_pixel(cam3, SIZE, [[50.0, 60.0, 3 * h]])[0, 1]
+    base1 = world_to_pixel(cam1, SIZE, [[50.0, 60.0, 0.0]])[0, 1]
+    base3 = world_to_pixel(cam3, SIZE, [[50.0, 60.0, 0.0]])[0, 1]
+    assert (base3 - top3) > 1.5 * (base1 - top1)                   # the dome drawn taller
+    for bad in (0.5, 51.0, float("nan")):
+        with pytest.raises(InvalidInputError, match="exaggerate"):
+            render.RenderOptions(exaggerate=bad)
+
+
+def test_colour_bar_spans_only_the_heights_there_are():
+    h = {}
+    for states in (("up", "up", "up"), ("down", "down", "down"), ("up", "up", "down")):
+        sc = build_scene(small_spec(states))
+        cmap, clim = colours.height_scale(sc)
+        h[states[2] + states[0]] = clim
+        top = max(abs(p.height_mm) for p in sc.patches)
+        if states[0] == states[2]:
+            assert (clim == (0.0, pytest.approx(top))) if states[0] == "up" else \
+                (clim == (pytest.approx(-top), 0.0))
+            assert np.allclose(cmap(0.0 if states[0] == "up" else 1.0)[:3],
+                               matplotlib.colormaps[colours.HEIGHT_CMAP](0.5)[:3], atol=0.02)
+        else:
+            assert clim == colours.height_clim(sc)
+    assert colours.height_scale(build_scene(PreviewSpec(small_spec().pieces, ()))) is None
+
+
+def test_overlay_scale_bar_ids_and_note(scene):
+    from stitchswitch.preview3d import overlay
+
+    assert [overlay.nice_length_mm(v) for v in (0.7, 1.0, 3.9, 19.9, 20.0, 73.0, 480.0)] == \
+        [0.5, 1.0, 2.0, 10.0, 20.0, 50.0, 200.0]
+    assert overlay.height_note(1.0) == "heights to scale (x 1)"
+    assert overlay.height_note(2.5) == "heights exaggerated x 2.5"
+    opts = dict(view="top", size=SIZE, lighting=False, legend=False)
+    plain, camera = render.render_scene(scene, render.RenderOptions(annotate=False, **opts))
+    marked, _ = render.render_scene(scene, render.RenderOptions(**opts))
+    diff = np.any(plain != marked, axis=2)
+    w, h = SIZE
+    assert diff[int(0.85 * h):, : int(0.5 * w)].any()              # the scale bar, bottom left
+    assert diff[: int(0.1 * h), : int(0.6 * w)].any()              # the note, top left
+    for p in scene.patches:                                         # each id just above its apex
+        col, row = world_to_pixel(camera, SIZE, [[*p.surface.centre_mm, max(p.height_mm, 0)]])[0]
+        col, row = int(round(col)), int(round(row))
+        assert diff[max(row - 25, 0):row, col - 12:col + 12].any(), p.id
+    per_px = overlay.mm_per_pixel(camera, SIZE)
+    bar = np.flatnonzero(np.all(marked[int(h - 0.05 * h)] == 0, axis=1))   # the bar's row
+    length = overlay.nice_length_mm(overlay.SCALE_BAR_FRACTION * w * per_px)
+    assert (bar.max() - bar.min()) * per_px == pytest.approx(length, rel=0.05)
+
+
+def test_section_through_a_patch_has_the_models_height(scene, model_h):
+    segs, owner, rest = single.section_segments(scene, "big")
+    mine = owner == 0
+    assert segs[mine][:, :, 1].max() == pytest.approx(model_h[60.0], abs=0.01)
+    assert segs[mine][:, :, 1].max() == pytest.approx(scene.patches[0].height_mm, abs=1e-4)  # f32
+    assert (rest[mine] <= scene.patches[0].profile.boundary_radius_mm).any()
+    assert (owner == -1).any() and (owner == 1).any()                # fabric and the neighbour
+    down = single.section_segments(scene, "down")
+    assert down[0][down[1] == 2][:, :, 1].min() == pytest.approx(-model_h[40.0], abs=0.01)
+    a = single.section_bytes(scene, "big", (500, 300))
+    assert a == single.section_bytes(scene, "big", (500, 300)) and a.startswith(b"\x89PNG")
+    assert a != single.section_bytes(scene, "big", (500, 300), exaggerate=3.0)
+    img = np.asarray(__import__("PIL.Image", fromlist=["Image"]).open(__import__("io").BytesIO(a)))
+    assert img.shape[:2] == (300, 500) and len(np.unique(img.reshape(-1, img.shape[2]), axis=0)) > 20
+    with pytest.raises(InvalidInputError, match="no patch 'nope'"):
+        single.section_segments(scene, "nope")

@@ -24,8 +24,11 @@ def _s8(b):
 def decode(data: bytes) -> Decoded:
     offset, flags = struct.unpack_from("<ii", data, 0)
     n_colors, n_points, hoop = struct.unpack_from("<iii", data, 24)
+    # the colour table: one int32 palette index per colour block, after the four hoop distances
+    palette = list(struct.unpack_from(f"<{n_colors}i", data, 116))
     out = Decoded(header={"offset": offset, "colors": n_colors, "points": n_points,
-                          "hoop": hoop, "date": data[8:22].decode("latin-1")})
+                          "hoop": hoop, "date": data[8:22].decode("latin-1"),
+                          "palette": palette})
     x = y = 0
     i = offset
     zero_jumps = 0

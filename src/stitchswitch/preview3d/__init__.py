@@ -8,9 +8,14 @@
   garment, popped up or down.
 * ``fabric``: the flat pieces with the patch footprints cut out, triangulated.
 * ``scene``: all of it, plus the outlines as lines; merged into one mesh for export.
-* ``camera``, ``render``: offscreen pyvista rendering to PNG (pyvista is imported only there).
-* ``colours``: height colour map, or which patches violate the design constraints.
-* ``single``: the single-patch figure (profile, keypoints, dimensions) with matplotlib.
+* ``camera``, ``render``: offscreen pyvista rendering to PNG (pyvista is imported only there),
+  framed on the patches (or a piece, or a patch), lit to show relief, heights optionally
+  exaggerated.
+* ``overlay``: patch ids, a scale bar and the height scale drawn on the rendered image.
+* ``colours``: height colour map (0 to the largest height when no patch is down), or which
+  patches violate the design constraints.
+* ``single``: cross-section figures with matplotlib: one patch's profile (keypoints,
+  dimensions), and the section view through a patch of a design's scene.
 * ``mesh_io``: mesh export through meshio (VTU, PLY, OBJ), atomic.
 
 Coordinates and the blend are documented in ``surfaces`` and in docs/preview.md.

@@ -5,6 +5,11 @@ length reads the same anywhere in the image. ``top`` looks down -z with +y up (t
 drawn); ``side`` looks along +y (from the front, -y) with +z up, showing heights; ``iso`` looks
 from (+x, -y, +z) with +z up. The scene's points, projected on the image plane, are fitted into
 the left ``usable`` fraction of the width (the rest is kept for the colour bar or legend).
+
+Framing (``frame_points``): by default the camera is fitted to the patches (each patch's surface
+out to its rim), so that a dome of a few centimetres on a garment panel fills the image instead
+of a corner of it; ``piece`` frames one whole piece with its patches, ``patch`` one patch; a
+design without patches is framed whole.
 """
 from __future__ import annotations
 
@@ -43,6 +48,37 @@ def check_view(view: str) -> str:
     if view not in VIEWS:
         raise InvalidInputError(f"view: {view!r} is not one of " + ", ".join(VIEWS))
     return view
+
+
+def frame_points(scene, piece: str | None = None, patch: str | None = None) -> np.ndarray:
+    """The points (n, 3) the camera is fitted to: the patches' surfaces by default, the piece
+    named ``piece`` (its mesh, outline and patches), or the patch ``patch``."""
+    if piece is not None and patch is not None:
+        raise InvalidInputError("give --piece or --patch, not both")
+    if patch is not None:
+        found = [p for p in scene.patches if p.id == patch]
+        if not found:
+            raise InvalidInputError(f"--patch: no patch {patch!r} in the design"
+                                    + _choices(p.id for p in scene.patches))
+        return found[0].surface.points
+    if piece is not None:
+        parts = [p.points for p in scene.pieces if p.name == piece]
+        if not parts:
+            raise InvalidInputError(f"--piece: no piece {piece!r} in the design"
+                                    + _choices(p.name for p in scene.pieces))
+        lines = [ln.points for ln in scene.lines if ln.kind == "piece" and ln.name == piece]
+        return np.vstack(parts + lines)
+    if scene.patches:
+        return np.vstack([p.surface.points for p in scene.patches])
+    return scene.all_points()
+
+
+def _choices(names) -> str:
+    names = list(names)
+    if not names:
+        return " (it has none)"
+    shown = ", ".join(names[:8]) + (", ..." if len(names) > 8 else "")
+    return f"; it has {shown}"
 
 
 def fit_camera(points, view: str, size: tuple[int, int], usable: float = 1.0,

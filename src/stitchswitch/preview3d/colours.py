@@ -1,8 +1,10 @@
 """Colour maps of the preview: height, or the patches and pieces that violate the constraints.
 
-``height``: a diverging map (matplotlib's ``coolwarm``) symmetric about the flat fabric:
-clim = (-H, H) with H the largest |apex height|, so flat fabric is grey, popped-up patches red
-and popped-down ones blue.
+``height``: matplotlib's diverging ``coolwarm``, grey at the flat fabric. With patches both up
+and down it spans (-H, H), H the largest |apex height| (``height_clim``); with every patch up the
+colour bar runs from 0 to the largest height over the map's upper (grey to red) half, with every
+patch down from the lowest height to 0 over its lower half, so no range is shown that no patch
+reaches (``height_scale``). Without patches there is nothing to colour and no colour bar.
 
 ``violations``: the constraint check of the design (``layout.check.constraints.check_design``): the
 embroidered part of a patch (rest radius <= R_b) is red if an error names the patch, orange if
@@ -32,6 +34,25 @@ def check_colour(colour: str) -> str:
 def height_clim(scene) -> tuple[float, float]:
     h = max([abs(p.height_mm) for p in scene.patches] + [1e-3])
     return -h, h
+
+
+def height_scale(scene):
+    """(colour map, clim) of the height colouring: the half of ``HEIGHT_CMAP`` on the side the
+    patches pop to when they all pop the same way, the whole map about 0 otherwise; None for
+    a scene without patches."""
+    import matplotlib
+    from matplotlib.colors import ListedColormap
+
+    heights = [p.height_mm for p in scene.patches]
+    if not heights:
+        return None
+    full = matplotlib.colormaps[HEIGHT_CMAP]
+    lo, hi = min(heights), max(heights)
+    if lo >= 0.0:
+        return ListedColormap(full(np.linspace(0.5, 1.0, 128)), "coolwarm-up"), (0.0, max(hi, 1e-3))
+    if hi <= 0.0:
+        return ListedColormap(full(np.linspace(0.0, 0.5, 128)), "coolwarm-down"), (min(lo, -1e-3), 0.0)
+    return full, height_clim(scene)
 
 
 def status_from_violations(violations) -> tuple[dict, dict]:

@@ -106,7 +106,7 @@ def patch(diameter_mm, fill, resolution_mm, conductive, core, outline, fmt, hoop
                           f"over unstitched fabric; --travel {travel})"),
         ("electrodes", ", ".join(f"{c} thread(s)" for c in threads.electrode_components)
                        or "none"),
-        ("colours", str(len(plan.threads))),
+    ] + _thread_rows(plan, output) + [
         ("thread", f"{plan.thread_length_mm / 1000:.2f} m"),
         ("time", f"{plan.sewing_time_min:.1f} min at {plan.stitches_per_minute:g} stitches/min, "
                  f"{plan.trim_s:g} s per trim, {plan.colour_change_s:g} s per colour change"),
@@ -114,13 +114,26 @@ def patch(diameter_mm, fill, resolution_mm, conductive, core, outline, fmt, hoop
         ("file", f"{output} ({fmt_name})"),
     ] + [("note", n) for n in plan.fabrication_notes()[len(plan.threads):]]
     if gap is not None and gap < min_gap - 1e-9:
-        rows.append(("warning", f"gaps of {gap:.2f} mm between triangles are narrower than "
+        shown = f"{gap:.2f}" if round(gap, 2) < min_gap else f"{gap:.3f}"
+        rows.append(("warning", f"gaps of {shown} mm between triangles are narrower than "
                                 f"{min_gap:g} mm (the check's feature-gap rule) and may close "
                                 "up: a coarser resolution widens them"))
     if fmt_name in export.EXPERIMENTAL:
         rows.append(("warning", f"{fmt_name.upper()} is experimental: its trims are not "
                                 "checked by an independent decoder"))
     click.echo(key_value_table(rows))
+
+
+def _thread_rows(plan, output) -> list[tuple[str, str]]:
+    """One row per thread block: its role and, for a JEF file, the palette thread the machine
+    shows for it (``jef_palette``), else the colour the file carries."""
+    from stitchswitch.layout.embroidery.jef_palette import machine_thread_text
+
+    rgbs = [t.rgb for t in plan.threads]
+    shown = (machine_thread_text(rgbs) if str(output).lower().endswith(".jef")
+             else ["#%02x%02x%02x" % c for c in rgbs])
+    return [(f"thread {k}", f"{t.name}: {text}")
+            for k, (t, text) in enumerate(zip(plan.threads, shown), start=1)]
 
 
 def _label(output) -> str:

@@ -13,7 +13,9 @@
   file from anywhere (counts, extents, fitting hoops), refusing malformed ones.
 * ``machines``: the machine and hoop catalogue, the one API for both (``catalogue``,
   ``Catalogue.machine``, ``Machine.hoop`` / ``largest_hoop`` / ``choose_hoop``,
-  ``DEFAULT_MACHINE``, ``load_machines``); ``hoop_spec``: ``Hoop`` and its JEF codes.
+  ``DEFAULT_MACHINE``, ``load_machines``); ``hoop_spec``: ``Hoop`` and its JEF codes;
+  ``jef_palette``: the Janome palette thread a JEF names for each colour block (``jef_threads``,
+  ``sheet_colour_names``).
 
 Below ``garment``, ``check`` and ``fabrication``; imports nothing of them.
 """

@@ -44,7 +44,18 @@ _LOWEST_SCALE = 1e-9
 
 
 def geometry_for(spec, resolution_mm: float = 5.0) -> PatchGeometry:
-    """The tessellated geometry of one patch spec, centred at the origin (hoop coordinates)."""
+    """The tessellated geometry of one patch spec, centred at the origin (hoop coordinates).
+    A conductive selection that selects no triangle is an error (an electrode that is not
+    there), so the check's geometry rule reports it before anything is fabricated."""
+    geom = _geometry(spec, resolution_mm)
+    if spec.conductive and not np.any(geom.conductive):
+        raise InvalidInputError(f"patch {spec.id}: conductive {spec.conductive!r} selects no "
+                                f"triangle ({geom.n_triangles} triangles at resolution "
+                                f"{resolution_mm:g} mm)")
+    return geom
+
+
+def _geometry(spec, resolution_mm: float) -> PatchGeometry:
     selection = parse_selection(spec.conductive) if spec.conductive else None
     composite = getattr(spec, "composite", None)
     outline = getattr(spec, "outline_mm", None)

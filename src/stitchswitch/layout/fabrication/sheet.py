@@ -13,6 +13,7 @@ resources).
 from __future__ import annotations
 
 from stitchswitch.files.html_page import Figure, ItemList, Paragraph, Section, Table, page
+from stitchswitch.layout.embroidery.jef_palette import sheet_colour_names
 from stitchswitch.layout.fabrication.document import FabricationDoc, HoopingDoc, Thread
 
 
@@ -53,13 +54,14 @@ def md_escape(text: str) -> str:
     return "".join("\\" + c if c in _MARKDOWN_SPECIAL else c for c in str(text))
 
 
-def _thread_text(t: Thread, esc=str) -> str:
+def _thread_text(t: Thread, esc=str, colour: str | None = None) -> str:
     patches = ", ".join(map(esc, t.patches))
+    colour = t.colour if colour is None else colour
     if t.role == "conductive":
-        return (f"conductive {t.colour} (conductive thread in the bobbin for this block: "
+        return (f"conductive {colour} (conductive thread in the bobbin for this block: "
                 f"put the conductive bobbin in at the colour change before this block, and the "
                 f"normal bobbin back when it ends) for {patches}")
-    return f"top {t.colour} for {patches}"
+    return f"top {colour} for {patches}"
 
 
 def _hooping_lines(h: HoopingDoc, mode: str, esc=str) -> list[str]:
@@ -76,7 +78,8 @@ def _hooping_lines(h: HoopingDoc, mode: str, esc=str) -> list[str]:
     if h.files.template_a4:
         lines.append(f"- 1:1 template to print at 100 % and mark through: `{h.files.template_a4}` "
                      f"(A4) or `{h.files.template_letter}` (Letter); check its 50 mm square")
-    lines += [f"- thread: {_thread_text(t, esc)}" for t in h.threads]
+    lines += [f"- thread: {_thread_text(t, esc, c)}" for t, c in zip(h.threads, sheet_colour_names(
+        [t.colour for t in h.threads], h.files.embroidery))]
     lines.append(f"- {h.stitches} stitches, {h.trims} trims, {h.colour_changes} colour "
                  f"change(s), {h.thread_length_m:.2f} m of top thread, about "
                  f"{_f(h.time_min)} min")
