@@ -86,43 +86,47 @@ def restrict(hb, dof_map, n_band, m):
         J = dof_map[j]
         if J < 0 or J >= n_band:
             continue
-        for k in range(kmax):
-            if j + k < n:
-                I = dof_map[j + k]
-                if 0 <= I < n_band:
-                    bw = max(bw, abs(I - J))
+        for k in range(1, min(kmax, n - j)):
+            I = dof_map[j + k]
+            if 0 <= I < n_band:
+                bw = max(bw, I - J if I > J else J - I)
     At = np.zeros((n_band, bw + 1))
     B = np.zeros((m, n_band))
     C = np.zeros((m, m))
+    # entry by entry in the same order (j, then k) whatever the destination, so every sum
+    # is formed in one fixed order; the band columns and the border columns apart
     for j in range(n):
         J = dof_map[j]
         if J < 0:
             continue
-        for k in range(kmax):
-            if j + k >= n:
-                break
-            I = dof_map[j + k]
-            if I < 0:
-                continue
-            v = hb[k, j]
-            if I == J:
-                v = v if k == 0 else 2.0 * v
-                if I < n_band:
-                    At[I, 0] += v
-                else:
-                    C[I - n_band, I - n_band] += v
-            elif I < n_band and J < n_band:
-                if I > J:
+        kend = min(kmax, n - j)
+        if J < n_band:
+            for k in range(kend):
+                I = dof_map[j + k]
+                if I < 0:
+                    continue
+                v = hb[k, j]
+                if I >= n_band:
+                    B[I - n_band, J] += v
+                elif I > J:
                     At[J, I - J] += v
-                else:
+                elif I < J:
                     At[I, J - I] += v
-            elif I >= n_band and J >= n_band:
-                C[I - n_band, J - n_band] += v
-                C[J - n_band, I - n_band] += v
-            elif I >= n_band:
-                B[I - n_band, J] += v
-            else:
-                B[J - n_band, I] += v
+                else:
+                    At[I, 0] += v if k == 0 else 2.0 * v
+        else:
+            for k in range(kend):
+                I = dof_map[j + k]
+                if I < 0:
+                    continue
+                v = hb[k, j]
+                if I == J:
+                    C[I - n_band, I - n_band] += v if k == 0 else 2.0 * v
+                elif I >= n_band:
+                    C[I - n_band, J - n_band] += v
+                    C[J - n_band, I - n_band] += v
+                else:
+                    B[J - n_band, I] += v
     return At, B, C
 
 
