@@ -31,7 +31,7 @@ from stitchswitch.reduced.model.terms import (
     hardening,
     radial,
 )
-from stitchswitch.reduced.model.terms.segment import BANDWIDTH, add_segment, segment
+from stitchswitch.reduced.model.terms.segment import BANDWIDTH, add_segment, segment, segment_lengths
 
 #: Array dimensions (-1: a scalar, "index": a 1-d integer array) of each default term's
 #: coefficients, in assembly order.
@@ -92,10 +92,10 @@ def _same(a, b):
 
 
 @njit(cache=True)
-def _membrane(r, z, cr, cc, grad, hb, want_g, want_h):
+def _membrane(r, z, cr, cc, lengths, grad, hb, want_g, want_h):
     """(E_radial, E_compression): ``radial._kernel`` with coefficients ``cr`` and
     ``compression._kernel`` with ``cc`` in one loop over the segments, each segment's length
-    computed once.
+    computed once and written into ``lengths`` (for the bending term).
 
     Both kernels add into the same entries (a segment's dofs), so the loop may interleave them
     only where that cannot change a sum: with one rest length for both (the default terms and
@@ -107,34 +107,31 @@ def _membrane(r, z, cr, cc, grad, hb, want_g, want_h):
     lam, w = cr[0], cr[1]
     lam_c, wc, jammed, wj = cc[0], cc[1], cc[2], cc[3]
     if not _same(lam, lam_c):
+        lengths[:] = segment_lengths(r, z)
         return (radial._kernel(r, z, lam, w, grad, hb, want_g, want_h),
                 compression._kernel(r, z, lam_c, wc, jammed, wj, grad, hb, want_g, want_h))
     Er, Ec = 0.0, 0.0
     live = True                            # compression has met no segment of zero length
     for i in range(r.size - 1):
         vr, vz, l = segment(r, z, i)
-        s = l - lam[i]
-        if s > 0.0:                        # stretched: l > lambda, so l / lambda >= 1 below
-            Er += w[i] * s * s
+        lengths[i] = l
+        active, e, d1, d2 = radial.stretched(l, lam[i], w[i])
+        if active:                         # l > lambda, so l / lambda >= 1: not slack
+            Er += e
             if want_g:
-                add_segment(grad, hb, i, 2.0 * w[i] * s, 2.0 * w[i], vr, vz, l, want_h)
+                add_segment(grad, hb, i, d1, d2, vr, vz, l, want_h)
             continue
         if not live:
             continue
         if l <= 0.0:
             Ec, live = math.inf, False
             continue
-        t = l / lam_c[i]
-        if t >= 1.0:
+        active, jam, e, e_jam, d1, d2 = compression.slack(l, lam_c[i], wc[i], jammed[i], wj[i])
+        if not active:
             continue
-        Ec += wc[i] * 2.0 * (t - 1.0 - math.log(t))
-        d1 = wc[i] * 2.0 * (1.0 - 1.0 / t) / lam_c[i]
-        d2 = wc[i] * 2.0 / (t * t * lam_c[i] * lam_c[i])
-        g = jammed[i] - l
-        if g > 0.0:
-            Ec += wj[i] * g * g
-            d1 -= 2.0 * wj[i] * g
-            d2 += 2.0 * wj[i]
+        Ec += e
+        if jam:
+            Ec += e_jam
         if want_g:
             add_segment(grad, hb, i, d1, d2, vr, vz, l, want_h)
     return Er, Ec
@@ -147,14 +144,15 @@ def energy(r, z, c):
         return math.inf
     no_g, no_h = np.zeros(0), np.zeros((BANDWIDTH + 1, 0))
     total = 0.0
-    Er, Ec = _membrane(r, z, c[0], c[1], no_g, no_h, False, False)
+    lengths = np.empty(r.size - 1)
+    Er, Ec = _membrane(r, z, c[0], c[1], lengths, no_g, no_h, False, False)
     total += Er
     total += Ec
     total += circumferential._kernel(r, z, c[2][0], c[2][1], no_g, no_h, False, False)
     total += hardening._kernel(r, z, c[3][0], c[3][1], c[3][2], no_g, no_h, False, False)
     total += boundary_ring._kernel(r, z, c[4][0], c[4][1], c[4][2], c[4][3], c[4][4], no_g, no_h,
                                    False, False)
-    total += bending._energy(r, z, c[5][0])
+    total += bending.energy_lengths(r, z, c[5][0], lengths)
     return total if math.isfinite(total) else math.inf
 
 
@@ -163,12 +161,13 @@ def derivatives(r, z, c, grad, hb, want_h):
     """Add the gradient into ``grad`` (2N,) and, if ``want_h``, the banded Hessian into ``hb``
     (6, 2N); return the energy (``assembly.Model.accumulate``)."""
     total = 0.0
-    Er, Ec = _membrane(r, z, c[0], c[1], grad, hb, True, want_h)
+    lengths = np.empty(r.size - 1)
+    Er, Ec = _membrane(r, z, c[0], c[1], lengths, grad, hb, True, want_h)
     total += Er
     total += Ec
     total += circumferential._kernel(r, z, c[2][0], c[2][1], grad, hb, True, want_h)
     total += hardening._kernel(r, z, c[3][0], c[3][1], c[3][2], grad, hb, True, want_h)
     total += boundary_ring._kernel(r, z, c[4][0], c[4][1], c[4][2], c[4][3], c[4][4], grad, hb, True,
                                    want_h)
-    total += bending._kernel(r, z, c[5][0], grad, hb, want_h)
+    total += bending.kernel_lengths(r, z, c[5][0], lengths, grad, hb, want_h)
     return total
