@@ -32,8 +32,8 @@ import math
 from numba import njit
 
 from stitchswitch.reduced.model.terms.hinge import hinge_shape
-from stitchswitch.reduced.model.terms.segment import segment_lengths
 from stitchswitch.reduced.model.terms.protocol import Term
+from stitchswitch.reduced.model.terms.segment import segment_lengths
 
 
 def coefficients(grid):
