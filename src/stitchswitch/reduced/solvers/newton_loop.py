@@ -64,19 +64,25 @@ def _stationary(At, B, C):
 
 
 @njit(cache=True)
+def escape_system(hb, free):
+    """(ab, dof_map): the restricted Hessian of the banded Hessian ``hb`` and the free drops
+    ``free`` in the node-by-node numbering (``step.reduced_indices``, LAPACK's band storage),
+    which the saddle escape takes; formed only for an escape."""
+    dof_map, n_red = reduced_indices(hb.shape[1] // 2, free)
+    return bordered.restrict(hb, dof_map, n_red, 0)[0].T, dof_map
+
+
+@njit(cache=True)
 def _leave(r, z, E, residual, it, shift, status, hb, free):
-    """``iterate``'s return: the restricted Hessian in the node-by-node numbering
-    (``step.reduced_indices``, LAPACK's band storage), which the saddle escape takes."""
-    dof_map, n_red = reduced_indices(r.size, free)
-    ab = bordered.restrict(hb, dof_map, n_red, 0)[0].T
-    return r, z, E, residual, it, shift, status, ab, dof_map
+    """``iterate``'s return."""
+    return r, z, E, residual, it, shift, status, hb, free
 
 
 def iterate(r, z, model, tol, max_iter, it, shift, derivatives, energy):
     """Newton iterations from (r, z) (admissible, dR units) with ``it`` iterations already
-    spent and the last Hessian ``shift``. Returns (r, z, E, residual, it, shift, status, ab,
-    dof_map): the last state, its energy and certificate, the restricted Hessian ``ab`` there
-    in the node-by-node numbering and that ``dof_map`` (``_leave``: for the saddle escape)."""
+    spent and the last Hessian ``shift``. Returns (r, z, E, residual, it, shift, status, hb,
+    free): the last state, its energy and certificate, the banded Hessian ``hb`` there and the
+    free drops (``escape_system`` makes the saddle escape's system of them)."""
     n = r.size
     grad, hb = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
     g_new, hb_new = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
