@@ -94,7 +94,8 @@ def work_per_iteration() -> dict:
         stack.enter_context(mock.patch.object(newton_loop, "point", counted("point", retraction.point)))
         stack.enter_context(mock.patch.object(newton_loop, "direction", step.direction.py_func))
         stack.enter_context(mock.patch.object(step, "bordered", SimpleNamespace(
-            factor=counted("factor", bordered.factor), solve=bordered.solve)))
+            envelope_rows=bordered.envelope_rows, factor_with=counted("factor", bordered.factor_with),
+            solve=bordered.solve)))
         iterations = sum(solve(Patch(float(d), p)).iterations for d, p in BENCH_DESIGNS)
     return {"iterations": iterations,
             "line-search energies per iteration": counts["energy"] / iterations,

@@ -25,7 +25,13 @@ import math
 import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.solvers.banded import CONTRACT, backward_rows, factor_rows, forward_rows
+from stitchswitch.reduced.solvers.banded import (
+    CONTRACT,
+    backward_rows,
+    envelope_rows,
+    factor_envelope,
+    forward_rows,
+)
 
 #: A z group of more nodes than this is a border variable.
 MAX_BAND_SPAN = 4
@@ -136,7 +142,14 @@ def factor(At, B, C, shift):
     (``banded.factor_rows``: rows and envelope), Y = L^-1 B^T by rows (m, n_band) with each
     row's first nonzero ``first``, the lower Cholesky factor Ls of the Schur complement and
     info: 0 on success, else nonzero (not positive definite)."""
-    Lt, ends, info = factor_rows(At, shift)
+    return factor_with(At, envelope_rows(At), B, C, shift)
+
+
+@njit(cache=True, fastmath=CONTRACT)
+def factor_with(At, ends, B, C, shift):
+    """``factor`` with the envelope ``ends`` of ``At`` (``banded.envelope_rows``) given: the
+    shift search of a Newton step finds it once for all its shifts."""
+    Lt, ends, info = factor_envelope(At, ends, shift)
     m, n_band = B.shape
     Y = B.copy()
     first = np.full(m, n_band, dtype=np.int64)
