@@ -87,15 +87,15 @@ def restrict(hb, dof_map, n_band, m):
     node-by-node numbering of ``step.reduced_indices``, n_band = all variables) ``At`` is the
     whole restricted band."""
     kmax, n = hb.shape
-    bw = 0
+    band = np.empty(n, dtype=np.int64)     # each dof's band variable, -1 for none
     for j in range(n):
-        J = dof_map[j]
-        if J < 0 or J >= n_band:
-            continue
-        for k in range(1, min(kmax, n - j)):
-            I = dof_map[j + k]
-            if 0 <= I < n_band:
-                bw = max(bw, I - J if I > J else J - I)
+        band[j] = dof_map[j] if dof_map[j] < n_band else -1
+    bw = 0                                 # the widest coupling of two band variables
+    for k in range(1, kmax):               # (diagonal by diagonal: branch-free, vectorized)
+        for j in range(n - k):
+            J, I = band[j], band[j + k]
+            d = I - J if I > J else J - I
+            bw = max(bw, d if (I >= 0) & (J >= 0) else 0)
     At = np.zeros((n_band, bw + 1))
     B = np.zeros((m, n_band))
     C = np.zeros((m, m))
