@@ -7,6 +7,13 @@ Cost per iteration: CPU time of each compiled part of one Newton iteration at th
 d = 55 mm, p = 1.0 (the energy with its Hessian, one line-search trial, the bordered
 restriction, factor and solve, the polar step), each the mean of many calls.
 
+Work per iteration: on the 21 designs of ``benchmarks/bench_solver.py``, the loop's source run
+interpreted with its compiled parts counted (``newton_loop.iterate`` with the fused energy):
+energy evaluations of the line search, retraction points (a point with a segment of zero
+length is rejected before its energy) and Cholesky factorizations (the shift search) per
+iteration. With the part costs this gives the floor of an iteration: one Hessian, one trial,
+one factorization.
+
 Usage: python scripts/study_solver.py [--json]
 """
 from __future__ import annotations
@@ -16,6 +23,7 @@ import sys
 import time
 
 import numpy as np
+from numba import njit
 
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
 from stitchswitch.reduced.model.discretization import make_grid
@@ -27,11 +35,18 @@ DIAMETERS_MM = np.arange(10.0, 150.0 + 1e-9, 5.0)
 FILLS = np.round(np.arange(0.05, 1.0 + 1e-9, 0.05), 2)
 
 
-def _cpu_us(f, *args, n: int = 3000) -> float:
-    f(*args)
-    t = time.process_time()
+@njit
+def _repeat(f, args, n):
     for _ in range(n):
         f(*args)
+
+
+def _cpu_us(f, *args, n: int = 3000) -> float:
+    """CPU time of one call of the compiled ``f``, called from compiled code (as the Newton loop
+    calls it: no dispatch from Python in the figure)."""
+    _repeat(f, args, 1)
+    t = time.process_time()
+    _repeat(f, args, n)
     return (time.process_time() - t) / n * 1e6
 
 
@@ -44,6 +59,48 @@ def robustness() -> dict:
             certified += sol.certified
     return {"designs": len(its), "certified": certified, "median_iterations": float(np.median(its)),
             "max_iterations": int(max(its))}
+
+
+BENCH_DESIGNS = [(d, p) for d in (15, 25, 40, 55, 70, 85, 100) for p in (0.6, 0.8, 1.0)]
+
+
+def work_per_iteration() -> dict:
+    """Counts per Newton iteration of the line-search energies, retraction points and
+    factorizations on the benchmark designs (the compiled parts counted from Python)."""
+    from contextlib import ExitStack
+    from types import SimpleNamespace
+    from unittest import mock
+
+    from stitchswitch.reduced.solvers import newton, newton_loop
+
+    counts = {"energy": 0, "point": 0, "factor": 0}
+
+    def counted(name, f):
+        def g(*args):
+            counts[name] += 1
+            return f(*args)
+        return g
+
+    energy = counted("energy", fused.energy)
+
+    def evaluator(grid, terms):
+        c = fused.coefficients(terms, grid)
+        return (lambda r, z, c, tol, max_iter, it, shift: newton_loop.iterate(
+            r, z, c, tol, max_iter, it, shift, fused.derivatives, energy),
+            c, lambda r, z: fused.energy(r, z, c))
+
+    with ExitStack() as stack:
+        stack.enter_context(mock.patch.object(newton, "_evaluator", evaluator))
+        stack.enter_context(mock.patch.object(newton_loop, "point", counted("point", retraction.point)))
+        stack.enter_context(mock.patch.object(newton_loop, "direction", step.direction.py_func))
+        stack.enter_context(mock.patch.object(step, "bordered", SimpleNamespace(
+            envelope_rows=bordered.envelope_rows, factor_with=counted("factor", bordered.factor_with),
+            solve=bordered.solve)))
+        iterations = sum(solve(Patch(float(d), p)).iterations for d, p in BENCH_DESIGNS)
+    return {"iterations": iterations,
+            "line-search energies per iteration": counts["energy"] / iterations,
+            "retraction points per iteration": counts["point"] / iterations,
+            "factorizations per iteration": counts["factor"] / iterations}
 
 
 def parts(design=(55.0, 1.0)) -> dict:
@@ -73,13 +130,20 @@ def parts(design=(55.0, 1.0)) -> dict:
 
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else argv
-    result = {"robustness": robustness(), "parts_us": parts()}
+    result = {"robustness": robustness(), "parts_us": parts(), "work": work_per_iteration()}
+    us = result["parts_us"]
+    result["floor_us_per_iteration"] = (
+        us["energy, gradient and Hessian"] + us["line-search trial (point + energy)"]
+        + us["restriction"] + us["factor and solve (direction)"] + us["polar step"])
     if "--json" in argv:
         print(json.dumps(result, indent=1))
         return 0
     print(result["robustness"])
-    for name, us in result["parts_us"].items():
-        print(f"{name:36s} {us:6.1f} us")
+    for name, v in us.items():
+        print(f"{name:36s} {v:6.1f} us")
+    for name, v in result["work"].items():
+        print(f"{name:36s} {v:6.2f}")
+    print(f"{'floor (one of each part)':36s} {result['floor_us_per_iteration']:6.1f} us")
     return 0
 
 

@@ -70,11 +70,17 @@ def factor_rows(At, shift):
     Each column is eliminated only down to its envelope: below it the factor is exactly zero,
     so the operations skipped would add zeros (the factor is dpbtf2's bit for bit, at a cost
     that grows with the long columns only, not with the band's widest column)."""
+    return factor_envelope(At, envelope_rows(At), shift)
+
+
+@njit(cache=True, fastmath=CONTRACT)
+def factor_envelope(At, ends, shift):
+    """``factor_rows`` with the envelope ``ends`` of ``At`` given: a shift changes only the
+    diagonal, so a search over shifts finds the envelope once."""
     n = At.shape[0]
     Lt = At.copy()
     for j in range(n):
         Lt[j, 0] += shift
-    ends = envelope_rows(Lt)
     for j in range(n):
         ajj = Lt[j, 0]
         if not ajj > 0.0:                  # also catches NaN, as dpbtf2 does

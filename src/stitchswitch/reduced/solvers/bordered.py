@@ -25,7 +25,13 @@ import math
 import numpy as np
 from numba import njit
 
-from stitchswitch.reduced.solvers.banded import CONTRACT, backward_rows, factor_rows, forward_rows
+from stitchswitch.reduced.solvers.banded import (
+    CONTRACT,
+    backward_rows,
+    envelope_rows,
+    factor_envelope,
+    forward_rows,
+)
 
 #: A z group of more nodes than this is a border variable.
 MAX_BAND_SPAN = 4
@@ -81,48 +87,52 @@ def restrict(hb, dof_map, n_band, m):
     node-by-node numbering of ``step.reduced_indices``, n_band = all variables) ``At`` is the
     whole restricted band."""
     kmax, n = hb.shape
-    bw = 0
+    band = np.empty(n, dtype=np.int64)     # each dof's band variable, -1 for none
     for j in range(n):
-        J = dof_map[j]
-        if J < 0 or J >= n_band:
-            continue
-        for k in range(kmax):
-            if j + k < n:
-                I = dof_map[j + k]
-                if 0 <= I < n_band:
-                    bw = max(bw, abs(I - J))
+        band[j] = dof_map[j] if dof_map[j] < n_band else -1
+    bw = 0                                 # the widest coupling of two band variables
+    for k in range(1, kmax):               # (diagonal by diagonal: branch-free, vectorized)
+        for j in range(n - k):
+            J, I = band[j], band[j + k]
+            d = I - J if I > J else J - I
+            bw = max(bw, d if (I >= 0) & (J >= 0) else 0)
     At = np.zeros((n_band, bw + 1))
     B = np.zeros((m, n_band))
     C = np.zeros((m, m))
+    # entry by entry in the same order (j, then k) whatever the destination, so every sum
+    # is formed in one fixed order; the band columns and the border columns apart
     for j in range(n):
         J = dof_map[j]
         if J < 0:
             continue
-        for k in range(kmax):
-            if j + k >= n:
-                break
-            I = dof_map[j + k]
-            if I < 0:
-                continue
-            v = hb[k, j]
-            if I == J:
-                v = v if k == 0 else 2.0 * v
-                if I < n_band:
-                    At[I, 0] += v
-                else:
-                    C[I - n_band, I - n_band] += v
-            elif I < n_band and J < n_band:
-                if I > J:
+        kend = min(kmax, n - j)
+        if J < n_band:
+            for k in range(kend):
+                I = dof_map[j + k]
+                if I < 0:
+                    continue
+                v = hb[k, j]
+                if I >= n_band:
+                    B[I - n_band, J] += v
+                elif I > J:
                     At[J, I - J] += v
-                else:
+                elif I < J:
                     At[I, J - I] += v
-            elif I >= n_band and J >= n_band:
-                C[I - n_band, J - n_band] += v
-                C[J - n_band, I - n_band] += v
-            elif I >= n_band:
-                B[I - n_band, J] += v
-            else:
-                B[J - n_band, I] += v
+                else:
+                    At[I, 0] += v if k == 0 else 2.0 * v
+        else:
+            for k in range(kend):
+                I = dof_map[j + k]
+                if I < 0:
+                    continue
+                v = hb[k, j]
+                if I == J:
+                    C[I - n_band, I - n_band] += v if k == 0 else 2.0 * v
+                elif I >= n_band:
+                    C[I - n_band, J - n_band] += v
+                    C[J - n_band, I - n_band] += v
+                else:
+                    B[J - n_band, I] += v
     return At, B, C
 
 
@@ -132,7 +142,14 @@ def factor(At, B, C, shift):
     (``banded.factor_rows``: rows and envelope), Y = L^-1 B^T by rows (m, n_band) with each
     row's first nonzero ``first``, the lower Cholesky factor Ls of the Schur complement and
     info: 0 on success, else nonzero (not positive definite)."""
-    Lt, ends, info = factor_rows(At, shift)
+    return factor_with(At, envelope_rows(At), B, C, shift)
+
+
+@njit(cache=True, fastmath=CONTRACT)
+def factor_with(At, ends, B, C, shift):
+    """``factor`` with the envelope ``ends`` of ``At`` (``banded.envelope_rows``) given: the
+    shift search of a Newton step finds it once for all its shifts."""
+    Lt, ends, info = factor_envelope(At, ends, shift)
     m, n_band = B.shape
     Y = B.copy()
     first = np.full(m, n_band, dtype=np.int64)

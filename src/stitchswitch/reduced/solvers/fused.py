@@ -31,7 +31,7 @@ from stitchswitch.reduced.model.terms import (
     hardening,
     radial,
 )
-from stitchswitch.reduced.model.terms.segment import BANDWIDTH
+from stitchswitch.reduced.model.terms.segment import BANDWIDTH, add_segment, segment, segment_lengths
 
 #: Array dimensions (-1: a scalar, "index": a 1-d integer array) of each default term's
 #: coefficients, in assembly order.
@@ -81,19 +81,78 @@ def in_domain(r, z):
 
 
 @njit(cache=True)
+def _same(a, b):
+    """True if the two arrays hold the same values."""
+    if a.size != b.size:
+        return False
+    for i in range(a.size):
+        if not a[i] == b[i]:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _membrane(r, z, cr, cc, lengths, grad, hb, want_g, want_h):
+    """(E_radial, E_compression): ``radial._kernel`` with coefficients ``cr`` and
+    ``compression._kernel`` with ``cc`` in one loop over the segments, each segment's length
+    computed once and written into ``lengths`` (for the bending term).
+
+    Both kernels add into the same entries (a segment's dofs), so the loop may interleave them
+    only where that cannot change a sum: with one rest length for both (the default terms and
+    their variants), a segment is stretched (radial) or slack (compression), never both, so
+    every entry of grad and hb receives at most two additions here (from the segments on either
+    side of a node), starting from zero, and two additions commute. The energies are summed
+    apart, each in segment order, and compression stops at a segment of zero length as its
+    kernel does (+inf). With other rest lengths the kernels run one after the other."""
+    lam, w = cr[0], cr[1]
+    lam_c, wc, jammed, wj = cc[0], cc[1], cc[2], cc[3]
+    if not _same(lam, lam_c):
+        lengths[:] = segment_lengths(r, z)
+        return (radial._kernel(r, z, lam, w, grad, hb, want_g, want_h),
+                compression._kernel(r, z, lam_c, wc, jammed, wj, grad, hb, want_g, want_h))
+    Er, Ec = 0.0, 0.0
+    live = True                            # compression has met no segment of zero length
+    for i in range(r.size - 1):
+        vr, vz, l = segment(r, z, i)
+        lengths[i] = l
+        active, e, d1, d2 = radial.stretched(l, lam[i], w[i])
+        if active:                         # l > lambda, so l / lambda >= 1: not slack
+            Er += e
+            if want_g:
+                add_segment(grad, hb, i, d1, d2, vr, vz, l, want_h)
+            continue
+        if not live:
+            continue
+        if l <= 0.0:
+            Ec, live = math.inf, False
+            continue
+        active, jam, e, e_jam, d1, d2 = compression.slack(l, lam_c[i], wc[i], jammed[i], wj[i])
+        if not active:
+            continue
+        Ec += e
+        if jam:
+            Ec += e_jam
+        if want_g:
+            add_segment(grad, hb, i, d1, d2, vr, vz, l, want_h)
+    return Er, Ec
+
+
+@njit(cache=True)
 def energy(r, z, c):
     """Total energy (``assembly.Model.energy``); +inf outside the domain."""
     if not in_domain(r, z):
         return math.inf
     no_g, no_h = np.zeros(0), np.zeros((BANDWIDTH + 1, 0))
     total = 0.0
-    total += radial._kernel(r, z, c[0][0], c[0][1], no_g, no_h, False, False)
-    total += compression._kernel(r, z, c[1][0], c[1][1], c[1][2], c[1][3], no_g, no_h, False, False)
+    lengths = np.empty(r.size - 1)
+    Er, Ec = _membrane(r, z, c[0], c[1], lengths, no_g, no_h, False, False)
+    total += Er
+    total += Ec
     total += circumferential._kernel(r, z, c[2][0], c[2][1], no_g, no_h, False, False)
     total += hardening._kernel(r, z, c[3][0], c[3][1], c[3][2], no_g, no_h, False, False)
     total += boundary_ring._kernel(r, z, c[4][0], c[4][1], c[4][2], c[4][3], c[4][4], no_g, no_h,
                                    False, False)
-    total += bending._energy(r, z, c[5][0])
+    total += bending.energy_lengths(r, z, c[5][0], lengths)
     return total if math.isfinite(total) else math.inf
 
 
@@ -102,11 +161,13 @@ def derivatives(r, z, c, grad, hb, want_h):
     """Add the gradient into ``grad`` (2N,) and, if ``want_h``, the banded Hessian into ``hb``
     (6, 2N); return the energy (``assembly.Model.accumulate``)."""
     total = 0.0
-    total += radial._kernel(r, z, c[0][0], c[0][1], grad, hb, True, want_h)
-    total += compression._kernel(r, z, c[1][0], c[1][1], c[1][2], c[1][3], grad, hb, True, want_h)
+    lengths = np.empty(r.size - 1)
+    Er, Ec = _membrane(r, z, c[0], c[1], lengths, grad, hb, True, want_h)
+    total += Er
+    total += Ec
     total += circumferential._kernel(r, z, c[2][0], c[2][1], grad, hb, True, want_h)
     total += hardening._kernel(r, z, c[3][0], c[3][1], c[3][2], grad, hb, True, want_h)
     total += boundary_ring._kernel(r, z, c[4][0], c[4][1], c[4][2], c[4][3], c[4][4], grad, hb, True,
                                    want_h)
-    total += bending._kernel(r, z, c[5][0], grad, hb, want_h)
+    total += bending.kernel_lengths(r, z, c[5][0], lengths, grad, hb, want_h)
     return total

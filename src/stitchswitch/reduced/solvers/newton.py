@@ -118,7 +118,7 @@ def minimize(grid: Grid, r0: np.ndarray, z0: np.ndarray, *, tol: float = 1e-10,
         return NewtonResult(r, z, np.inf, np.inf, 0, False, None, "start is outside the energy's domain")
     shift, it, second_order, escapes = 0.0, 0, None, 0
     while True:
-        r, z, E, residual, it, shift, status, ab, dof_map = iterate(
+        r, z, E, residual, it, shift, status, hb, free = iterate(
             r, z, model, float(tol), int(max_iter), it, shift)
         if status == newton_loop.BUDGET:
             message = "iteration budget exhausted"
@@ -133,7 +133,7 @@ def minimize(grid: Grid, r0: np.ndarray, z0: np.ndarray, *, tol: float = 1e-10,
         if second_order or escapes >= MAX_ESCAPES:
             message = "converged" if second_order else "converged to a saddle point"
             break
-        escaped = _escape(energy, grid.n_inside, r, z, E, ab, dof_map)
+        escaped = _escape(energy, grid.n_inside, r, z, E, *newton_loop.escape_system(hb, free))
         if escaped is None:
             message = "converged to a saddle point (no descent along negative curvature)"
             break

@@ -64,27 +64,38 @@ def _stationary(At, B, C):
 
 
 @njit(cache=True)
+def escape_system(hb, free):
+    """(ab, dof_map): the restricted Hessian of the banded Hessian ``hb`` and the free drops
+    ``free`` in the node-by-node numbering (``step.reduced_indices``, LAPACK's band storage),
+    which the saddle escape takes; formed only for an escape."""
+    dof_map, n_red = reduced_indices(hb.shape[1] // 2, free)
+    return bordered.restrict(hb, dof_map, n_red, 0)[0].T, dof_map
+
+
+@njit(cache=True)
 def _leave(r, z, E, residual, it, shift, status, hb, free):
-    """``iterate``'s return: the restricted Hessian in the node-by-node numbering
-    (``step.reduced_indices``, LAPACK's band storage), which the saddle escape takes."""
-    dof_map, n_red = reduced_indices(r.size, free)
-    ab = bordered.restrict(hb, dof_map, n_red, 0)[0].T
-    return r, z, E, residual, it, shift, status, ab, dof_map
+    """``iterate``'s return."""
+    return r, z, E, residual, it, shift, status, hb, free
 
 
 def iterate(r, z, model, tol, max_iter, it, shift, derivatives, energy):
     """Newton iterations from (r, z) (admissible, dR units) with ``it`` iterations already
-    spent and the last Hessian ``shift``. Returns (r, z, E, residual, it, shift, status, ab,
-    dof_map): the last state, its energy and certificate, the restricted Hessian ``ab`` there
-    in the node-by-node numbering and that ``dof_map`` (``_leave``: for the saddle escape)."""
+    spent and the last Hessian ``shift``. Returns (r, z, E, residual, it, shift, status, hb,
+    free): the last state, its energy and certificate, the banded Hessian ``hb`` there and the
+    free drops (``escape_system`` makes the saddle escape's system of them)."""
     n = r.size
     grad, hb = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
-    g_new = np.zeros(2 * n)
+    g_new, hb_new = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
     u = drops(z)
+    E_new, fresh = 0.0, False
     while True:
-        grad.fill(0.0)
-        hb.fill(0.0)
-        E = derivatives(r, z, model, grad, hb, True)
+        if fresh:               # the accepted trial's derivatives (below): already at (r, z)
+            grad, g_new, hb, hb_new, E = g_new, grad, hb_new, hb, E_new
+        else:
+            grad.fill(0.0)
+            hb.fill(0.0)
+            E = derivatives(r, z, model, grad, hb, True)
+        fresh = False
         residual, free = stationarity(grad, u)
         dof_map, n_band, m = bordered.indices(n, free)
         At, B, C = bordered.restrict(hb, dof_map, n_band, m)
@@ -104,12 +115,14 @@ def iterate(r, z, model, tol, max_iter, it, shift, derivatives, energy):
             # The predicted decrease is below the energy's rounding error, so the Armijo test
             # cannot decide: accept the full step if it lowers the certificate instead, and
             # stop if it does not (the certificate is at its round-off floor, where further
-            # steps only move the state by ulps).
+            # steps only move the state by ulps). The trial's Hessian is formed with its
+            # gradient, so an accepted trial starts the next iteration without a second call.
             ok, r_new, z_new = point(l, phi, dl, dphi, 1.0)
             if ok:
                 g_new.fill(0.0)
-                derivatives(r_new, z_new, model, g_new, hb, False)
-                accepted = stationarity(g_new, drops(z_new))[0] < residual
+                hb_new.fill(0.0)
+                E_new = derivatives(r_new, z_new, model, g_new, hb_new, True)
+                accepted = fresh = stationarity(g_new, drops(z_new))[0] < residual
             if not accepted:
                 return _leave(r, z, E, residual, it, shift,
                               _stationary(At, B, C) if certified else STALLED, hb, free)

@@ -42,10 +42,15 @@ def polar(r, z, d):
     l, phi, dl, dphi = np.empty(m), np.empty(m), np.empty(m), np.empty(m)
     for i in range(m):
         vr, vz = r[i + 1] - r[i], z[i + 1] - z[i]
-        li = math.hypot(vr, vz)
-        p = math.atan2(vz, vr)             # z' <= 0, so p is in [-pi, 0] up to the sign of 0
-        if p > 0.0:
-            p = -math.pi if p > 0.5 * math.pi else 0.0
+        if vz == 0.0 and vr > 0.0:
+            # a level segment (a third of them: the held drops), without the library calls:
+            # atan2(+-0, vr) = +-0 and hypot(vr, +-0) = vr exactly
+            li, p = vr, vz
+        else:
+            li = math.hypot(vr, vz)
+            p = math.atan2(vz, vr)         # z' <= 0, so p is in [-pi, 0] up to the sign of 0
+            if p > 0.0:
+                p = -math.pi if p > 0.5 * math.pi else 0.0
         wr, wz = d[2 * i + 2] - d[2 * i], d[2 * i + 3] - d[2 * i + 1]
         l[i], phi[i] = li, p
         dl[i] = (vr * wr + vz * wz) / li
@@ -68,6 +73,12 @@ def point(l, phi, dl, dphi, alpha):
     for i in range(m):
         p = phi[i] + alpha * dphi[i]
         p = 0.0 if i == 0 else min(max(p, -math.pi), 0.0)
+        if p == 0.0:
+            # a level segment without the library calls: cos(+-0) = 1 and sin(+-0) = +-0 exactly
+            acc += lt[i]
+            r[i + 1] = acc
+            u[i] = 0.0 if i == 0 else max(-lt[i] * p, 0.0)
+            continue
         acc += lt[i] * math.cos(p)
         r[i + 1] = acc
         u[i] = 0.0 if i == 0 else max(-lt[i] * math.sin(p), 0.0)

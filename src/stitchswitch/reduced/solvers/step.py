@@ -96,12 +96,13 @@ def direction(At, B, C, g, dof_map, shift):
     mean = mean / n_red if n_red > 0 else 0.0
     floor = SHIFT_FLOOR * (mean if mean != 0.0 else 1.0)
     shift = shift / 10.0 if shift > floor else 0.0
-    Lt, ends, Y, Ls, first, info = bordered.factor(At, B, C, shift)
+    ends = bordered.envelope_rows(At)          # the same for every shift
+    Lt, ends, Y, Ls, first, info = bordered.factor_with(At, ends, B, C, shift)
     while info != 0:
         shift = max(10.0 * shift, floor)
         if not shift < math.inf:
             return np.full(g.size, math.nan), shift
-        Lt, ends, Y, Ls, first, info = bordered.factor(At, B, C, shift)
+        Lt, ends, Y, Ls, first, info = bordered.factor_with(At, ends, B, C, shift)
     x = bordered.solve(Lt, ends, Y, Ls, first, g_red)
     d = np.zeros(g.size)
     for a in range(g.size):

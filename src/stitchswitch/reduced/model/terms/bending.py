@@ -31,8 +31,9 @@ import math
 
 from numba import njit
 
-from stitchswitch.reduced.model.terms.hinge import hinge_geometry
+from stitchswitch.reduced.model.terms.hinge import hinge_shape
 from stitchswitch.reduced.model.terms.protocol import Term
+from stitchswitch.reduced.model.terms.segment import segment_lengths
 
 
 def coefficients(grid):
@@ -43,9 +44,16 @@ def coefficients(grid):
 
 @njit(cache=True)
 def _energy(r, z, w):
+    return energy_lengths(r, z, w, segment_lengths(r, z))
+
+
+@njit(cache=True)
+def energy_lengths(r, z, w, lengths):
+    """The energy with the segment lengths given (``segment.segment_lengths``: a caller that
+    has them already saves two square roots per hinge)."""
     E = 0.0
     for i in range(r.size - 2):
-        X, Y, D = hinge_geometry(r, z, i)[8:]
+        X, Y, D = hinge_shape(r, z, i, lengths[i], lengths[i + 1])[8:]
         if Y <= 0.0 or D <= 0.0:
             return math.inf
         E += w[i] * r[i + 1] * r[i + 1] * X * X / (D * Y * Y)
@@ -54,14 +62,19 @@ def _energy(r, z, w):
 
 @njit(cache=True)
 def _kernel(r, z, w, grad, hb, want_h):
-    """Energy, gradient and (``want_h``) banded Hessian, written out with scalars: the local
-    vectors are six named values each and every Hessian entry is added straight into the band
-    (the constant Hessians of X and a.b, ``hinge.HESS_X`` and ``HESS_DOT``, are written out
-    too). Local arrays would cost twice as much: the compiler cannot keep them in registers
-    next to the stores into ``hb``."""
+    return kernel_lengths(r, z, w, segment_lengths(r, z), grad, hb, want_h)
+
+
+@njit(cache=True)
+def kernel_lengths(r, z, w, lengths, grad, hb, want_h):
+    """Energy, gradient and (``want_h``) banded Hessian with the segment lengths given, written
+    out with scalars: the local vectors are six named values each and every Hessian entry is
+    added straight into the band (the constant Hessians of X and a.b, ``hinge.HESS_X`` and
+    ``HESS_DOT``, are written out too). Local arrays would cost twice as much: the compiler
+    cannot keep them in registers next to the stores into ``hb``."""
     E = 0.0
     for i in range(r.size - 2):
-        ar, az, br, bz, la, lb, m0, m1, X, Y, D = hinge_geometry(r, z, i)
+        ar, az, br, bz, la, lb, m0, m1, X, Y, D = hinge_shape(r, z, i, lengths[i], lengths[i + 1])
         rho = r[i + 1]
         iD, iY, ir = 1.0 / D, 1.0 / Y, 1.0 / rho
         G = rho * rho * iD * iY * iY

@@ -43,6 +43,25 @@ def coefficients(grid):
 
 
 @njit(cache=True)
+def slack(l, lam, w, jammed, wj):
+    """(slack, jammed, E_psi, E_jam, dE/dl, d2E/dl2) of one segment of length l > 0: psi(l /
+    lam) weighted ``w`` and, if l is below the jammed length, the penalty wj (jammed - l)^2
+    (E_jam = 0 otherwise). A segment that is not slack has no energy."""
+    t = l / lam
+    if t >= 1.0:
+        return False, False, 0.0, 0.0, 0.0, 0.0
+    e = w * 2.0 * (t - 1.0 - math.log(t))
+    d1 = w * 2.0 * (1.0 - 1.0 / t) / lam
+    d2 = w * 2.0 / (t * t * lam * lam)
+    g = jammed - l
+    if g > 0.0:
+        d1 -= 2.0 * wj * g
+        d2 += 2.0 * wj
+        return True, True, e, wj * g * g, d1, d2
+    return True, False, e, 0.0, d1, d2
+
+
+@njit(cache=True)
 def _kernel(r, z, lam, w, jammed, wj, grad, hb, want_g, want_h):
     """psi(l / lambda) weighted ``w`` and the jamming penalty wj (jammed - l)_+^2 per slack
     segment."""
@@ -51,17 +70,12 @@ def _kernel(r, z, lam, w, jammed, wj, grad, hb, want_g, want_h):
         vr, vz, l = segment(r, z, i)
         if l <= 0.0:
             return math.inf
-        t = l / lam[i]
-        if t >= 1.0:
+        active, jam, e, e_jam, d1, d2 = slack(l, lam[i], w[i], jammed[i], wj[i])
+        if not active:
             continue
-        E += w[i] * 2.0 * (t - 1.0 - math.log(t))
-        d1 = w[i] * 2.0 * (1.0 - 1.0 / t) / lam[i]
-        d2 = w[i] * 2.0 / (t * t * lam[i] * lam[i])
-        g = jammed[i] - l
-        if g > 0.0:
-            E += wj[i] * g * g
-            d1 -= 2.0 * wj[i] * g
-            d2 += 2.0 * wj[i]
+        E += e
+        if jam:
+            E += e_jam
         if want_g:
             add_segment(grad, hb, i, d1, d2, vr, vz, l, want_h)
     return E

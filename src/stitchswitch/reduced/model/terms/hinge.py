@@ -33,7 +33,15 @@ def hinge_geometry(r, z, i):
     """The segment vectors a, b, their lengths, rbar_i, rbar_{i+1} and X, Y, D of hinge i."""
     ar, az = r[i + 1] - r[i], z[i + 1] - z[i]
     br, bz = r[i + 2] - r[i + 1], z[i + 2] - z[i + 1]
-    la, lb = math.sqrt(ar * ar + az * az), math.sqrt(br * br + bz * bz)
+    return hinge_shape(r, z, i, math.sqrt(ar * ar + az * az), math.sqrt(br * br + bz * bz))
+
+
+@njit(cache=True)
+def hinge_shape(r, z, i, la, lb):
+    """``hinge_geometry`` with the two segment lengths given (``segment.segment``'s lengths are
+    the same numbers): for a caller that has them already."""
+    ar, az = r[i + 1] - r[i], z[i + 1] - z[i]
+    br, bz = r[i + 2] - r[i + 1], z[i + 2] - z[i + 1]
     m0, m1 = 0.5 * (r[i] + r[i + 1]), 0.5 * (r[i + 1] + r[i + 2])
     X = ar * bz - az * br
     Y = la * lb + ar * br + az * bz

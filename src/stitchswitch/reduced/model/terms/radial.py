@@ -20,16 +20,26 @@ def coefficients(grid):
 
 
 @njit(cache=True)
+def stretched(l, lam, w):
+    """(stretched, E, dE/dl, d2E/dl2) of one segment of length l (rest length lam, weight w);
+    a segment that is not stretched has no energy."""
+    s = l - lam
+    if s <= 0.0:
+        return False, 0.0, 0.0, 0.0
+    return True, w * s * s, 2.0 * w * s, 2.0 * w
+
+
+@njit(cache=True)
 def _kernel(r, z, lam, w, grad, hb, want_g, want_h):
     E = 0.0
     for i in range(r.size - 1):
         vr, vz, l = segment(r, z, i)
-        s = l - lam[i]
-        if s <= 0.0:
+        active, e, d1, d2 = stretched(l, lam[i], w[i])
+        if not active:
             continue
-        E += w[i] * s * s
+        E += e
         if want_g:
-            add_segment(grad, hb, i, 2.0 * w[i] * s, 2.0 * w[i], vr, vz, l, want_h)
+            add_segment(grad, hb, i, d1, d2, vr, vz, l, want_h)
     return E
 
 

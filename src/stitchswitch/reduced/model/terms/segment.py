@@ -21,6 +21,15 @@ def segment(r, z, i):
 
 
 @njit(cache=True)
+def segment_lengths(r, z):
+    """The length of every segment (``segment``'s numbers)."""
+    lengths = np.empty(r.size - 1)
+    for i in range(r.size - 1):
+        lengths[i] = segment(r, z, i)[2]
+    return lengths
+
+
+@njit(cache=True)
 def add_local(grad, hb, first, g, H, m, want_h):
     """grad[first + p] += g[p]; H (m x m, symmetric) into the band at dofs first..first+m-1."""
     for p in range(m):
