@@ -5,6 +5,7 @@ import json
 import pytest
 from click.testing import CliRunner
 
+from stitchswitch import Patch
 from stitchswitch.cli.main import cli
 from stitchswitch.demos.tennis_pocket import BALL_DIAMETER_MM, POCKET_HEIGHT_MM
 
@@ -81,6 +82,16 @@ def test_forearm_interface(tmp_path):
     fab = json.loads((out / "fabrication/fabrication.json").read_text())
     for h in fab["hoopings"]:
         assert h["colour_changes"] >= 1          # the conductive centres are a second thread
+    # the soft tier springs back, the medium and firm tiers are bistable (the shell's verdict),
+    # in the console and the summary
+    for text in (r.output, page):
+        assert "soft buttons (d" in text and "the shell finds spring-back" in text
+        assert text.count("the shell finds bistable") == 2 and "wanted" not in text
+    from stitchswitch.fem_reference.snap import bistability
+    from stitchswitch.fem_reference.snap.regions import cell_verdict
+
+    firm = next(p for p in patches if p["id"].startswith("firm"))
+    assert cell_verdict(bistability(Patch(firm["diameter_mm"], firm["fill"]))) == "bistable"
 
 
 def test_unknown_demo_and_busy_outdir(tmp_path):

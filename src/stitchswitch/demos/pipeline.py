@@ -1,9 +1,10 @@
 """Run a demo end to end into one output directory.
 
-Steps (each printed with its time): 1 inverse design and placement (the demo's ``build``),
-2 constraint check, 3 3D preview, 4 hoop grouping and JEF export (``layout.fabrication.fabricate``),
-5 the one-page HTML summary. The directory is built next to its target and renamed into place
-at the end (``files.outdir.building``): on any error nothing is left behind.
+Steps (each printed with its time; step 1 also prints the demo's notes): 1 inverse design and
+placement (the demo's ``build``), 2 constraint check, 3 3D preview, 4 hoop grouping and JEF
+export (``layout.fabrication.fabricate``), 5 the one-page HTML summary. The directory is built
+next to its target and renamed into place at the end (``files.outdir.building``): on any error
+nothing is left behind.
 Files hold no timestamps or timings, so a rerun gives identical files.
 
 Output directory::
@@ -47,6 +48,8 @@ def run_demo(demo, outdir, *, force: bool = False, echo=print, time_limit_s: flo
         timer = _Timer(echo)
         with timer(1):
             built = demo.build()
+            for note in built.notes:
+                echo(f"      {note}")
             save_design(built.design, tmp / "design.json")
             design = load_design(tmp / "design.json")      # as a user's file: named, hashed
         with timer(2):

@@ -24,7 +24,7 @@ def _inverse(built) -> str:
             lo, hi = t["force_range_N"]
             bits.append(f"force in [{lo:g}, {hi:g}] N")
         rows = [(k + 1, _f(c["d_mm"]), _f(c["fill"], 3), _f(c["h_mm"]), _f(c["r_a_mm"]),
-                 _f(c["r_b_mm"]), _f(c["force_N"], 3), "chosen" if k == 0 else "")
+                 _f(c["r_b_mm"]), _f(c["force_N"], 3), "chosen" if c == step.chosen else "")
                 for k, c in enumerate(step.candidates)]
         parts.append(Section(f"{step.label}: {', '.join(bits)}", (
             Table(rows, head=("#", "d mm", "fill", "h mm", "r_a mm", "r_b mm", "force N", "")),),
@@ -69,7 +69,8 @@ def summary_html(demo, built, violations, fab_doc, outdir: Path) -> str:
         Section("1. Inverse design", (
             *_inverse(built),
             Paragraph("Every candidate is confirmed by a direct certified solve; the first is "
-                      "used.", cls="note"))),
+                      "used unless the demo checks a further property of its designs (its notes "
+                      "say which).", cls="note"))),
         Section("2. Placement", (
             Table(patches, head=("patch", "piece", "centre mm (garment)", "d mm (stretched)",
                                  "fill", "conductive", "state")),

@@ -1,21 +1,22 @@
-"""One design with the shell of revolution: build its problem, find its pop-up equilibrium
-independently of the reduced model, and read its keypoints.
+"""One design with the shell of revolution: build its problem, find its pop-up equilibrium,
+and read its keypoints.
 
 ``build`` maps a ``Patch`` and the reduced model's ``Material`` (``moduli``) plus the shell's
 own ``ShellParams`` to a ``ShellProblem`` on the reduced model's domain L = (N - 1) dR (the same
 far edge, so that the keypoints compare; ``edge`` as in ``problem``).
 
-``equilibrium`` starts from the flat sheet raised by a smooth bump (a quartic cap of height
-``SEED_FRACTION`` R_b inside the patch; the flat sheet itself is a stationary point by the
-z -> -z symmetry) and runs Newton (``newton.minimize``) at full prestretch. If Newton ends on a
-saddle (lowest eigenvalue < 0) it restarts along the negative-curvature mode, on the side of
-higher apex, up to ``MAX_RESTARTS`` times. The result is certified: converged and its lowest
-eigenvalue > ``MIN_EIGENVALUE`` (a strict local minimum). Nothing of the reduced model but its
-material constants and its domain length is used.
+Starts. ``reduced_start`` is the reduced model's equilibrium, an initial guess only: Newton
+(``relax``) leaves it for the shell's own equilibrium. ``cap_start`` is independent of the
+reduced model: the embroidered disc as a spherical cap at its natural length, the bare knit
+leaving it tangentially and flattening out. ``problem.flat_state()`` is the flat sheet.
+``equilibrium`` runs Newton from the reduced start for at most ``GUESS_ITERATIONS``; when that
+does not certify, from the flat sheet (kept if it certifies), where ``relax`` follows a negative-curvature mode if
+the flat state is a saddle (docs/fem-reference.md, "Starts"). The result is certified when
+converged with lowest scaled eigenvalue > ``MIN_EIGENVALUE`` (a strict local minimum).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -28,8 +29,14 @@ from stitchswitch.reduced.model.discretization import make_grid
 from stitchswitch.reduced.model.keypoints import Keypoints, keypoints_from_profile
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material, Patch
 
-SEED_FRACTION = 0.3
 MAX_RESTARTS = 3
+#: Newton iterations allowed from the reduced model's guess before the flat start is tried:
+#: of the model-error table's 54 solves, those that certify from the guess take at most 115
+#: (d 25 mm, p 0.6 without hoop bending; docs/fem-reference.md, "Starts"); d 25 mm, p 1.0
+#: wandered for 385 iterations into a folded state that cannot be certified.
+GUESS_ITERATIONS = 150
+#: Tangent angle (rad) at the embroidery boundary of ``cap_start``'s spherical cap.
+CAP_ANGLE = 1.4
 #: Spacing of the profile the keypoints are read from, as a fraction of R_b.
 SAMPLE_FRACTION = 1.0 / 200.0
 
@@ -83,17 +90,31 @@ class ShellState:
         return keypoints_from_profile(S, r, z - z[-1], n)
 
 
-def seed(problem: ShellProblem, fraction: float = SEED_FRACTION, sign: float = 1.0) -> np.ndarray:
-    """The flat sheet with the quartic cap sign * fraction R_b (1 - (S/R_b)^2)^2 inside."""
+def cap_start(problem: ShellProblem, angle: float = CAP_ANGLE, decay: float = 0.5) -> np.ndarray:
+    """A start independent of the reduced model: inside, a spherical cap at its natural length
+    (meridional strain 0) whose tangent makes ``angle`` (rad) with the plane at R_b; outside,
+    the bare knit at its rest length, leaving the cap tangentially with its angle decaying as
+    exp(-(S - R_b) / (decay R_b)). Held edges blend r back to S at the frame, as
+    ``reduced_start`` does."""
     mer = problem.meridian
-    y = problem.flat_state()
-    rb = mer.rb
-    for k, S in enumerate(mer.inner_nodes):
-        u = S / rb
-        y[mer.dof("inner", "z", k)] += sign * fraction * rb * (1 - u * u) ** 2
-        if k:
-            y[mer.dof("inner", "dz", k)] += sign * fraction * rb * 2 * (1 - u * u) * (-2 * u) / rb
-    return y
+    rb, L, lam = mer.rb, mer.length, problem.inner_moduli.lam
+    n = 200
+    S_in = np.linspace(0.0, rb, n + 1)
+    rho = lam * rb / angle
+    r_in, z_in = rho * np.sin(lam * S_in / rho), rho * np.cos(lam * S_in / rho)
+    S_out = np.linspace(rb, L, 4 * n + 1)
+    theta = angle * np.exp(-(S_out - rb) / (decay * rb))
+    mid = 0.5 * (theta[1:] + theta[:-1])
+    step = np.diff(S_out)
+    r_out = r_in[-1] + np.concatenate([[0.0], np.cumsum(np.cos(mid) * step)])
+    z_out = z_in[-1] - np.concatenate([[0.0], np.cumsum(np.sin(mid) * step)])
+    R = np.concatenate([S_in, S_out[1:]])
+    r = np.concatenate([r_in, r_out[1:]])
+    z = np.concatenate([z_in, z_out[1:]])
+    z = z - z[-1]
+    if problem.edge != "free":
+        r = r + np.clip((R - rb) / max(L - rb, 1e-9), 0.0, 1.0) * (R - r)
+    return from_profile(problem, R, r, z, n)
 
 
 def relax(problem: ShellProblem, y0: np.ndarray, *, max_iter: int = 300, tol: float | None = None) -> ShellState:
@@ -155,10 +176,26 @@ def reduced_start(problem: ShellProblem, patch: Patch, material: Material) -> np
     return from_profile(problem, R, r, z, red.n_inside)
 
 
+def settled(problem: ShellProblem, patch: Patch, material: Material, *,
+            max_iter: int = 300, guess_iterations: int = GUESS_ITERATIONS) -> ShellState:
+    """Newton from the reduced model's guess (``guess_iterations`` at most); if that does not
+    certify, from the flat sheet. The flat run's state if it certifies, else the guess run's
+    (uncertified); iterations and time are those of both runs."""
+    guess = relax(problem, reduced_start(problem, patch, material),
+                  max_iter=min(max_iter, guess_iterations))
+    if guess.certified:
+        return guess
+    flat = relax(problem, problem.flat_state(), max_iter=max_iter)
+    kept = flat if flat.certified else guess
+    return replace(kept, iterations=guess.iterations + flat.iterations,
+                   solve_s=guess.solve_s + flat.solve_s)
+
+
 def equilibrium(patch: Patch, material: Material = DEFAULT_MATERIAL, params: ShellParams = DEFAULT_SHELL,
                 *, edge: str = "free", refine: int = 0, max_iter: int = 300,
                 start: np.ndarray | None = None) -> ShellState:
-    """The pop-up equilibrium of one design from ``start`` (default: ``reduced_start``)."""
+    """The pop-up equilibrium of one design: ``settled``, or Newton from ``start`` if given."""
     problem = build(patch, material, params, edge=edge, refine=refine)
-    y0 = reduced_start(problem, patch, material) if start is None else start
-    return relax(problem, y0, max_iter=max_iter)
+    if start is None:
+        return settled(problem, patch, material, max_iter=max_iter)
+    return relax(problem, start, max_iter=max_iter)
