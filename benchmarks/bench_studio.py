@@ -13,8 +13,17 @@ Measured from the browser (Debian's chromium driven by Playwright, tests/studio_
   data, so it arrives after it on the same websocket), with the server's share of it:
   ``check``, ``scene`` (``preview3d.scene.build_scene`` of the whole design) and ``view_send``
   (serializing the VTK scene for the browser);
+* ``slider_check``: the same step until the check panel shows the new check;
 * ``move``: a drag of a patch by 4 mm until the check panel shows the new check (the edit
-  counter the server sends with it), alternating back and forth.
+  counter the server sends with it), alternating back and forth; ``move_3d``: until the 3D
+  view has the moved patch.
+
+The 3D view counts as updated when its ``afterSceneLoaded`` event (vtk.js has synchronized the
+scene and fetched the new arrays) has fired for the edit. The server's share: ``check``
+(incremental, ``studio.live_check.LiveCheck``), ``scene`` (``preview3d.scene.SceneBuilder``:
+only the changed parts are rebuilt), ``sync`` (the pyvista actors of the changed parts),
+``view_send`` (trame-vtk serializing the scene state and the new arrays' checksums), each as
+wall time and, with the suffix ``cpu``, as the server process's CPU time.
 
 The machine is shared: the 1-minute load average is printed with the figures.
 
@@ -50,6 +59,20 @@ def _wait_stamp(page, sel: str, above: int) -> None:
                            polling="raf", timeout=30000)
 
 
+def _loads(page) -> int:
+    return int(page.evaluate("window.studioSceneLoads || 0"))
+
+
+def _wait_scene(page, above: int, loads: int) -> None:
+    """Until the 3D view shows edit ``above + 1`` or later: the server has sent its scene (the
+    scene stamp follows the view's data on the websocket), and the view has synchronized since
+    ``loads`` and is not synchronizing any more (vtk.js's afterSceneLoaded: arrays fetched)."""
+    page.wait_for_function(
+        f"Number(document.querySelector('#scene-stamp').innerText) > {above} && "
+        f"(window.studioSceneLoads || 0) > {loads} && !window.studioSceneBusy",
+        polling="raf", timeout=30000)
+
+
 def measure(runs: int) -> dict:
     from stitchswitch.layout.garment.design_io import load_design
     from stitchswitch.studio.canvas import view_of
@@ -71,21 +94,24 @@ def measure(runs: int) -> dict:
                 page.wait_for_selector("#slider-fill .v-slider-thumb")
                 thumb = page.locator("#slider-fill .v-slider-thumb")
                 thumb.focus()
-                slider, readout, server = [], [], []
+                _wait_scene(page, -1, 0)                # the first scene is in the view
+                slider, readout, check, server = [], [], [], []
                 for k in range(runs):
-                    before = _stamp(page, "#scene-stamp")
+                    before, loads = _stamp(page, "#edits"), _loads(page)
                     t = time.perf_counter()
                     page.keyboard.press("ArrowLeft" if k % 2 else "ArrowRight")
                     _wait_stamp(page, "#readout-stamp", before)
                     readout.append(time.perf_counter() - t)
-                    _wait_stamp(page, "#scene-stamp", before)
+                    _wait_stamp(page, "#edits", before)
+                    check.append(time.perf_counter() - t)
+                    _wait_scene(page, before, loads)
                     slider.append(time.perf_counter() - t)
                     server.append(json.loads(page.locator("#timings").inner_text()))
-                move = []
+                move, move_3d = [], []
                 x, y = p.centre_mm
                 for k in range(runs):
                     dx = 4.0 if k % 2 == 0 else -4.0
-                    before = _stamp(page, "#edits")
+                    before, loads = _stamp(page, "#edits"), _loads(page)
                     page.mouse.move(*to_px(page, view, x, y))
                     page.mouse.down()
                     page.mouse.move(*to_px(page, view, x + dx, y), steps=2)
@@ -93,10 +119,18 @@ def measure(runs: int) -> dict:
                     page.mouse.up()
                     _wait_stamp(page, "#edits", before)
                     move.append(time.perf_counter() - t)
+                    _wait_scene(page, before, loads)
+                    move_3d.append(time.perf_counter() - t)
+                    server.append(json.loads(page.locator("#timings").inner_text()))
                     x += dx
-    phases = {f"  server {k[:-2]}": [row[k] / 1000.0 for row in server] for k in server[0]}
+    slider_rows, move_rows = server[:runs], server[runs:]
+    phases = {f"  server {k[:-2]}": [row[k] / 1000.0 for row in slider_rows]
+              for k in slider_rows[0] if k.endswith("_s")}
+    move_phases = {f"  server {k[:-2]}": [row[k] / 1000.0 for row in move_rows]
+                   for k in move_rows[0] if k.endswith("_s")}
     return {"server_start": [server_start], "first_load": [first_load], "slider_readout": readout,
-            "slider": slider, **phases, "move": move}
+            "slider_check": check, "slider": slider, **phases, "move": move, "move_3d": move_3d,
+            **{k + " (move)": v for k, v in move_phases.items()}}
 
 
 def summary(samples: dict) -> list[dict]:
@@ -121,10 +155,10 @@ def main(argv=None) -> int:
     if args.json:
         print(json.dumps({"rows": rows, "loadavg_1min": load}, indent=2))
         return 0
-    print(f"{'step':<18}{'runs':>5}{'median ms':>11}{'p95 ms':>9}{'target ms':>11}  meets")
+    print(f"{'step':<30}{'runs':>5}{'median ms':>11}{'p95 ms':>9}{'target ms':>11}  meets")
     for r in rows:
         tgt = "" if r["target_s"] is None else f"{1000 * r['target_s']:.0f}"
-        print(f"{r['step']:<18}{r['runs']:>5}{1000 * r['median_s']:>11.0f}{1000 * r['p95_s']:>9.0f}"
+        print(f"{r['step']:<30}{r['runs']:>5}{1000 * r['median_s']:>11.0f}{1000 * r['p95_s']:>9.0f}"
               f"{tgt:>11}  {'' if r['meets'] is None else ('yes' if r['meets'] else 'NO')}")
     print(f"load average (1 min): {load:.2f}")
     return 0

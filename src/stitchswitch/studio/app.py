@@ -15,9 +15,11 @@ import os
 import time
 
 from stitchswitch.errors import InvalidInputError, StitchSwitchError
+from stitchswitch.preview3d import colours
 from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import canvas, live_check
 from stitchswitch.studio.profile_plot import profile_svg
+from stitchswitch.studio.scene3d import PlotterSync
 
 #: the pointer expression passed to the canvas handlers: position on the SVG and its size, px
 POINTER = ("[$event.clientX - $event.currentTarget.getBoundingClientRect().left, "
@@ -27,7 +29,7 @@ READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_
                 ("z_b", "z_b_mm"))
 
 
-def _plotter(scene3d):
+def _plotter():
     import pyvista as pv
     from vtkmodules.vtkCommonCore import vtkLogger
 
@@ -36,11 +38,6 @@ def _plotter(scene3d):
         vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_ERROR)
     pl = pv.Plotter(off_screen=True, window_size=(600, 450))
     pl.set_background("white")
-    pl.add_mesh(scene3d.surface, scalars="height (mm)", cmap="coolwarm", clim=scene3d.clim,
-                show_scalar_bar=False, name="surface")
-    pl.add_mesh(scene3d.lines, color="black", line_width=1.5, name="lines")
-    pl.view_isometric()
-    pl.reset_camera()
     return pl
 
 
@@ -54,9 +51,12 @@ def build_app(session, server=None):
 
     server = server or get_server("stitchswitch-studio", client_type="vue3")
     state, ctrl = server.state, server.controller
-    pl = _plotter(session.scene3d)
+    pl = _plotter()
+    view_sync = PlotterSync(pl)
     drag = {"id": None, "start": None}
-    pending = {"refresh": None}
+    pending = {"check": None, "scene": None}
+    camera = {"set": False}
+    shown_last = [None, None]         # the design and check verdicts the 3D view was sent
 
     def push_readout() -> None:
         r = session.selected_readout()
@@ -67,7 +67,8 @@ def build_app(session, server=None):
                          | {"force": None if r.force_N is None else round(r.force_N, 3),
                             "message": r.message})
 
-    def push() -> None:
+    def push_panel() -> None:
+        """Everything but the 3D view, sent at once; the scene follows (``schedule_scene``)."""
         s = session.state
         p = s.selected_patch()
         with state:
@@ -82,14 +83,39 @@ def build_app(session, server=None):
             state.dirty = session.document.dirty(s.design)
             state.n_patches = len(s.design.patches)
             state.edits = s.changed
-        pl.mapper.scalar_range = session.scene3d.clim
-        t0 = time.perf_counter()
-        ctrl.view_update()
-        # sent after the view's geometry: when the page shows it, the 3D data has arrived
-        state.timings = {k: round(1000 * v, 1) for k, v in session.timings_s.items()} | {
-            "view_send_s": round(1000 * (time.perf_counter() - t0), 1)}
-        state.scene_stamp = s.changed
         state.flush()
+
+    def push_scene() -> None:
+        pending["scene"] = None
+        shown_last[:] = (session.state.design, colours.status_from_violations(session.violations))
+        session.refresh_scene()
+        t0, c0 = time.perf_counter(), time.process_time()
+        counts = view_sync.sync(session.scene3d, session.violations)
+        if not camera["set"]:
+            pl.view_isometric()
+            pl.reset_camera()
+            camera["set"] = True
+        t1, c1 = time.perf_counter(), time.process_time()
+        ctrl.view_update()
+        sent = {"sync_s": t1 - t0, "sync_cpu_s": c1 - c0, "view_send_s": time.perf_counter() - t1,
+                "view_send_cpu_s": time.process_time() - c1}
+        # sent after the view's geometry, on the same websocket
+        state.timings = {k: round(1000 * v, 2) for k, v in (session.timings_s | sent).items()} | counts
+        state.scene_stamp = session.state.changed
+        state.flush()
+
+    def schedule_scene() -> None:
+        """The 3D view after the panel has gone out, when the design or the check's verdicts
+        changed (a selection alone changes nothing there); edits arriving meanwhile join it."""
+        shown = (session.state.design, colours.status_from_violations(session.violations))
+        if shown[0] is shown_last[0] and shown[1] == shown_last[1]:
+            return
+        if pending["scene"] is None:
+            pending["scene"] = asyncio.get_event_loop().call_later(0.001, push_scene)
+
+    def push() -> None:
+        push_panel()
+        schedule_scene()
 
     def guarded(fn):
         def run(*args, **kwargs):
@@ -135,14 +161,13 @@ def build_app(session, server=None):
             state.flush()
         except (InvalidInputError, StitchSwitchError, OSError) as exc:
             state.message = f"Error: {exc}"
-        # the check and the 3D view after the readout has gone out; slider steps that arrive
-        # meanwhile join the pending refresh, which picks up the latest design
-        if pending["refresh"] is None:
-            pending["refresh"] = asyncio.get_event_loop().call_later(0.001, refresh_later)
+        # slider steps that arrive meanwhile join the pending check, which takes the latest design
+        if pending["check"] is None:
+            pending["check"] = asyncio.get_event_loop().call_later(0.001, check_later)
 
-    def refresh_later():
-        pending["refresh"] = None
-        session.refresh()
+    def check_later():
+        pending["check"] = None
+        session.refresh_check()
         push()
 
     def on_inverse():
@@ -276,10 +301,16 @@ def build_app(session, server=None):
                          mousedown=(on_down, POINTER), mouseup=(on_up, POINTER), tabindex="0",
                          keydown=(on_key, "[$event.key]"))
                 with html.Div(style="flex:1; min-width:0", id="view3d"):
-                    view = vtk_widgets.VtkLocalView(pl.ren_win)
+                    # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js has
+                    # the new geometry, its arrays fetched), counted for the benchmark and tests
+                    view = vtk_widgets.VtkLocalView(
+                        pl.ren_win, before_scene_loaded="window.studioSceneBusy = true",
+                        after_scene_loaded="window.studioSceneBusy = false; "
+                                           "window.studioSceneLoads = (window.studioSceneLoads || 0) + 1")
                     ctrl.view_update = view.update
                     ctrl.view_reset_camera = view.reset_camera
-    push()
+    push_panel()
+    push_scene()
     return server
 
 

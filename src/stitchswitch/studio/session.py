@@ -16,36 +16,50 @@ from stitchswitch.studio.state import StudioState
 
 
 class Session:
+    """``scene3d`` (a ``scene3d.Scene3D``) may be None (no 3D view). The check is rerun after
+    every action (incrementally, ``live_check.LiveCheck``); the 3D scene is not: the page calls
+    ``refresh_scene`` once it has shown the check, so the panel never waits for the scene."""
+
     def __init__(self, document, design, dmap, scene3d=None):
         self.document = document
         self.state = StudioState(design)
         self.dmap = dmap
         self.scene3d = scene3d
+        self.checker = live_check.LiveCheck()
         self.violations: list = []
         self.candidates: list = []
         self.order = None
-        self.timings_s: dict = {}
-        self.refresh(check=True)
+        self.timings_s: dict = {}       # wall and CPU (process) time of the last check and scene
+        self.refresh_check()
 
     @property
     def eta(self) -> float:
         return float(self.state.design.material_object().eta)
 
     # --- recomputation ------------------------------------------------------------------
-    def refresh(self, check: bool = True, scene: bool = True) -> None:
-        t0 = time.perf_counter()
-        if check:
-            self.violations = live_check.run_check(self.state.design)
-        t1 = time.perf_counter()
-        if scene and self.scene3d is not None:
+    def refresh_check(self) -> None:
+        t0, c0 = time.perf_counter(), time.process_time()
+        self.violations = self.checker.run(self.state.design)
+        self.timings_s["check_s"] = time.perf_counter() - t0
+        self.timings_s["check_cpu_s"] = time.process_time() - c0
+
+    def refresh_scene(self) -> None:
+        if self.scene3d is not None:
+            t0, c0 = time.perf_counter(), time.process_time()
             self.scene3d.update(self.state.design)
-        self.timings_s = {"check_s": t1 - t0, "scene_s": time.perf_counter() - t1}
+            self.timings_s["scene_s"] = time.perf_counter() - t0
+            self.timings_s["scene_cpu_s"] = time.process_time() - c0
+
+    def refresh(self) -> None:
+        """The check, then the scene."""
+        self.refresh_check()
+        self.refresh_scene()
 
     def after_edit(self, refresh: bool = True) -> None:
         self.document.autosave(self.state.design)
         self.order = None
         if refresh:
-            self.refresh()
+            self.refresh_check()
 
     def selected_readout(self):
         p = self.state.selected_patch()
@@ -70,8 +84,8 @@ class Session:
         self.after_edit()
 
     def edit(self, patch_id, refresh: bool = True, **changes) -> None:
-        """Edit a patch; ``refresh`` False leaves the check and the scene to a later
-        ``refresh()`` (the page shows the readout first)."""
+        """Edit a patch; ``refresh`` False leaves the check to a later ``refresh_check()``
+        (the page shows the readout first)."""
         self.state.edit_patch(patch_id, **changes)
         self.after_edit(refresh)
 
