@@ -180,3 +180,21 @@ def test_grouping_and_export(tmp_path, design_file):
         xy = np.array([(x, y) for kind, x, y in decoded.records if kind == "stitch"]) / 10.0
         expected = np.ptp(np.array(h.positions_mm), axis=0) + 50.0     # centres' span + d
         assert np.ptp(xy, axis=0) == pytest.approx(expected, abs=2.0)
+
+
+def test_grouping_uses_fabricates_hoop_choice(design_file):
+    from stitchswitch.layout.fabrication.fabricate import FabricateOptions, grouping_hoops
+
+    doc, design = Document.open(design_file)
+    s = StudioState(design)
+    c = centre(design)
+    s.add_patch((c[0] - 40, c[1]), diameter_mm=50.0)
+    s.add_patch((c[0] + 40, c[1]), diameter_mm=50.0)
+    every = {h.name for h in grouping_hoops(s.design)}
+    assert len(every) > 1
+    one = FabricateOptions(hoop="SQ20b")
+    assert [h.name for h in grouping_hoops(s.design, one)] == ["SQ20b"]
+    _, order = fabrication.hoopings(s.design, one)
+    assert {h.hoop.name for h in order.hoopings} == {"SQ20b"}
+    _, order = fabrication.hoopings(s.design)
+    assert {h.hoop.name for h in order.hoopings} <= every

@@ -15,7 +15,7 @@ log = logging.getLogger("stitchswitch")
 def _source(source, rectangle, output):
     """(Document, Design) to edit: a design file, or a new design from a pattern or rectangle
     saved to ``output``."""
-    from stitchswitch.cli.design.import_cmd import _rectangle
+    from stitchswitch.cli.design.import_cmd import parse_rectangle
     from stitchswitch.layout.garment.design import VERSION, Design
     from stitchswitch.layout.garment.piece_select import rectangle_piece, select_pieces
     from stitchswitch.studio.persist import Document
@@ -32,7 +32,7 @@ def _source(source, rectangle, output):
     if os.path.exists(output):
         raise InvalidInputError(f"--output {output!r} exists; open it as DESIGN.json instead")
     if rectangle is not None:
-        pieces = (rectangle_piece(*_rectangle(rectangle)),)
+        pieces = (rectangle_piece(*parse_rectangle(rectangle)),)
     else:
         from stitchswitch.layout.garment.dxf.reader import import_dxf
 

@@ -1,7 +1,8 @@
 """Fabrication Mode: hoop grouping of the design and export of the fabrication folder.
 
-``hoopings`` runs the same grouping as ``stitchswitch fabricate`` (``grouping.group`` on the
-footprints stretched by the material's eta, then ``order.order_hoopings``) for display;
+``hoopings`` runs the same grouping as ``stitchswitch fabricate`` (``grouping.group`` into
+``fabricate.grouping_hoops`` on the footprints stretched by the material's eta, then
+``order.order_hoopings``) for display;
 ``export`` calls ``layout.fabrication.fabricate.fabricate`` itself, so the folder is the one the
 CLI writes for the same design and options.
 """
@@ -9,29 +10,19 @@ from __future__ import annotations
 
 import dataclasses
 
-from stitchswitch.layout.embroidery import export as formats
-from stitchswitch.layout.embroidery.machines import catalogue
-from stitchswitch.layout.fabrication.fabricate import FabricateOptions, fabricate
+from stitchswitch.layout.fabrication.fabricate import FabricateOptions, fabricate, grouping_hoops
 from stitchswitch.layout.fabrication.grouping.footprints import stretch
 from stitchswitch.layout.fabrication.grouping.group import group
 from stitchswitch.layout.fabrication.order import order_hoopings
-
-
-def _hoops(design, options: FabricateOptions):
-    machine = catalogue(options.machines_file, formats.supported_formats()).machine(
-        options.machine or design.machine.name)
-    name = options.hoop or (design.machine.hoop if design.machine.name.lower()
-                            == machine.name.lower() else None)
-    return (machine.hoop(name),) if name else machine.hoops
 
 
 def hoopings(design, options: FabricateOptions | None = None):
     """(grouping, stitching order) of ``design`` under ``options`` (mode, time limit, spacing)."""
     options = options or FabricateOptions()
     eta = float(design.material_object().eta)
-    feet, pieces = stretch(design, eta)
-    grouping = group(feet, pieces, _hoops(design, options), options.mode, options.time_limit_s,
-                     options.spacing_mm)
+    feet, pieces = stretch(design, eta, options.blank_margin_mm)
+    grouping = group(feet, pieces, grouping_hoops(design, options), options.mode,
+                     options.time_limit_s, options.spacing_mm)
     return grouping, order_hoopings(grouping.hoopings, feet)
 
 
