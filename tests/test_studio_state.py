@@ -19,6 +19,7 @@ from stitchswitch.studio import fabrication, inverse_panel, live_check
 from stitchswitch.studio.persist import Document, sidecar_path
 from stitchswitch.studio.profile_plot import profile_svg
 from stitchswitch.studio.readout import heights_mm, readout
+from stitchswitch.studio.session import Session
 from stitchswitch.studio.state import StudioState
 
 from decoders import jef
@@ -198,3 +199,93 @@ def test_grouping_uses_fabricates_hoop_choice(design_file):
     assert {h.hoop.name for h in order.hoopings} == {"SQ20b"}
     _, order = fabrication.hoopings(s.design)
     assert {h.hoop.name for h in order.hoopings} <= every
+
+
+def test_multi_select_moves_and_removes_together(empty):
+    s = StudioState(empty)
+    c = centre(empty)
+    a = s.add_patch((c[0] - 60, c[1]))
+    b = s.add_patch((c[0] + 60, c[1]))
+    d = s.add_patch((c[0], c[1] + 80))
+    s.select(a)
+    s.toggle_select(b)
+    assert s.selection == (a, b) and s.selected == b          # the inspector shows the last
+    s.move_patches(s.selection, 10.0, -5.0)
+    assert s.design.patch(a).centre_mm == (c[0] - 50, c[1] - 5)
+    assert s.design.patch(b).centre_mm == (c[0] + 70, c[1] - 5)
+    assert s.design.patch(d).centre_mm == (c[0], c[1] + 80)
+    s.undo()                                                   # one step for both
+    assert s.design.patch(a).centre_mm == (c[0] - 60, c[1]) and s.selection == (a, b)
+    s.toggle_select(a)
+    assert s.selection == (b,)
+    s.toggle_select(d)
+    s.remove_patches(s.selection)
+    assert [p.id for p in s.design.patches] == [a] and s.selection == ()
+    s.undo()
+    assert len(s.design.patches) == 3 and s.selection == (b, d)
+    s.select(a)
+    assert s.selection == (a,)
+
+
+def test_composite_and_conductive_options(tmp_path, design_file):
+    doc, design = Document.open(design_file)
+    session = Session(doc, design, default_map())
+    pid = session.add(centre(design))
+    session.set_composite(20.0, 0.9)
+    p = session.state.design.patch(pid)
+    assert p.composite.core_diameter_mm == 20.0 and p.composite.core_fill == 0.9
+    session.set_conductive("ring:0")
+    assert session.state.design.patch(pid).conductive == "ring:0"
+    with pytest.raises(InvalidInputError, match="selection"):
+        session.set_conductive("spiral:3")
+    with pytest.raises(InvalidInputError, match="core_diameter_mm"):
+        session.set_composite(200.0, 0.9)                      # larger than the patch
+    assert session.state.design.patch(pid).composite.core_diameter_mm == 20.0
+    session.save()
+    saved = load_design(design_file).patch(pid)
+    assert saved.composite == p.composite and saved.conductive == "ring:0"
+    session.set_composite(None)
+    session.set_conductive("")
+    p = session.state.design.patch(pid)
+    assert p.composite is None and p.conductive is None
+    session.undo()
+    assert session.state.design.patch(pid).conductive == "ring:0"
+
+
+def test_canvas_zoom_pan_rulers_and_drag_guides(design_file):
+    from stitchswitch.studio import canvas
+
+    doc, design = Document.open(design_file)
+    session = Session(doc, design, default_map())
+    fit = session.view()
+    w_px, h_px = 800.0, 600.0
+    about = canvas.to_mm(fit, 300.0, 200.0, w_px, h_px)
+    session.zoom(2.0, about)
+    v = session.view()
+    assert v.width == pytest.approx(fit.width / 2)
+    assert canvas.to_mm(v, 300.0, 200.0, w_px, h_px) == pytest.approx(about)   # stays put
+    for _ in range(40):
+        session.zoom(2.0)
+    assert session.view().width == pytest.approx(fit.width * canvas.ZOOM_RANGE[0])
+    session.fit_view()
+    session.pan(30.0, -20.0)
+    v = session.view()
+    x, y = canvas.to_mm(fit, 300.0, 200.0, w_px, h_px)
+    assert canvas.to_mm(v, 300.0, 200.0, w_px, h_px) == pytest.approx((x - 30.0, y + 20.0))
+    svg = session.canvas_svg()
+    assert f'viewBox="{v.x0:.2f} {v.y0:.2f}' in svg
+    xs = [float(t) for t in re.findall(r'data-ruler-x="([-\d.]+)"', svg)]
+    assert xs and np.allclose(np.diff(xs), 50.0)             # a 50 mm ruler step on 400 mm
+    ys = [float(t) for t in re.findall(r'data-ruler-y="([-\d.]+)"', svg)]
+    assert ys and 0.0 in ys and 300.0 in ys
+    pid = session.add(centre(design))
+    assert "data-guide" not in session.canvas_svg()
+    session.dragging = (pid,)
+    svg = session.canvas_svg()
+    ring = np.array([[float(c) for c in pt.split(",")] for pt in re.search(
+        r'points="([^"]+)"[^>]*data-guide="centre"', svg).group(1).split()])
+    eta = design.material_object().eta
+    inset = 10.0 + 5.0 + 60.0 / (2 * eta)                      # seam + clearance + radius
+    assert ring[:, 0].min() == pytest.approx(inset, abs=0.05)
+    assert -ring[:, 1].max() == pytest.approx(inset, abs=0.05)  # y negated in the SVG
+    assert 'data-guide="seam"' in svg

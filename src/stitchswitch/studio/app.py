@@ -1,10 +1,12 @@
 """The studio's web page (trame, Vue 3 with Vuetify 3, VTK local view): binds the widgets to a
 ``Session`` and serves it.
 
-Design Mode: the canvas (SVG from ``canvas``; a press on a patch selects it, releasing
-elsewhere moves it, a click on an empty spot of a piece adds a patch, Delete removes the
-selected patch), the inspector
-(diameter and fill sliders, state, the live readout), the 3D view (WebGL in the browser, the
+Design Mode: the canvas (SVG from ``canvas``; a press on a patch selects it, Shift+press adds
+it to the selection or takes it out, releasing elsewhere moves the selection, with the
+piece-edge rule drawn while the button is down; a click on an empty spot of a piece adds a
+patch, a drag from an empty spot pans, the wheel and the toolbar's - / Fit / + zoom; Delete
+removes the selection), the inspector (diameter and fill sliders, state, the live readout,
+the composite core and the conductive triangles), the 3D view (WebGL in the browser, the
 scene of ``scene3d``), the inverse-design panel and the constraint panel. Fabrication Mode:
 hoop grouping drawn on the canvas, and export of the fabrication folder.
 """
@@ -21,10 +23,14 @@ from stitchswitch.studio import canvas, live_check
 from stitchswitch.studio.profile_plot import profile_svg
 from stitchswitch.studio.scene3d import PlotterSync
 
-#: the pointer expression passed to the canvas handlers: position on the SVG and its size, px
+#: the pointer expression passed to the canvas handlers: position on the SVG and its size, px,
+#: then the Shift key
 POINTER = ("[$event.clientX - $event.currentTarget.getBoundingClientRect().left, "
            "$event.clientY - $event.currentTarget.getBoundingClientRect().top, "
-           "$event.currentTarget.clientWidth, $event.currentTarget.clientHeight]")
+           "$event.currentTarget.clientWidth, $event.currentTarget.clientHeight, $event.shiftKey]")
+WHEEL = POINTER[:-len(", $event.shiftKey]")] + ", $event.deltaY]"
+#: zoom factor per wheel step or button press
+ZOOM_STEP = 1.25
 READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_b_mm"),
                 ("z_b", "z_b_mm"))
 
@@ -74,8 +80,13 @@ def build_app(session, server=None):
         with state:
             push_readout()
             state.selected = s.selected
+            state.selection = list(s.selection)
             if p is not None:
                 state.diameter, state.fill, state.patch_state = p.diameter_mm, p.fill, p.state
+                state.composite_on = p.composite is not None
+                if p.composite is not None:
+                    state.core_d, state.core_fill = p.composite.core_diameter_mm, p.composite.core_fill
+                state.conductive = p.conductive or ""
             state.canvas_svg = session.canvas_svg()
             state.violations = live_check.rows(session.violations)
             state.n_errors = live_check.errors(session.violations)
@@ -128,25 +139,45 @@ def build_app(session, server=None):
         return run
 
     @guarded
-    def on_down(px, py, w, h):
+    def on_down(px, py, w, h, shift=False):
+        """A press: on a patch, select it (Shift: add it to the selection or take it out) and
+        draw the edge rule of the patches about to be dragged; elsewhere, start a pan or an add."""
         pt = canvas.to_mm(session.view(), px, py, w, h)
-        drag["id"], drag["start"] = session.state.patch_at(pt), pt
-        if drag["id"] is not None and drag["id"] != session.state.selected:
-            session.state.select(drag["id"])
+        pid = session.state.patch_at(pt)
+        drag["id"], drag["start"] = pid, pt
+        if pid is not None and shift:
+            session.state.toggle_select(pid)
+        elif pid is not None and pid not in session.state.selection:
+            session.state.select(pid)
+        session.dragging = session.state.selection if pid in session.state.selection else ()
 
     @guarded
-    def on_up(px, py, w, h):
+    def on_up(px, py, w, h, shift=False):
+        """A release: after a press on a selected patch, move the selection; after a press on
+        an empty spot, pan the view (moved) or add a patch there (not moved)."""
         pt = canvas.to_mm(session.view(), px, py, w, h)
         pid, start = drag["id"], drag["start"]
         drag["id"] = drag["start"] = None
+        session.dragging = ()
         if start is None:
             return
-        moved = abs(pt[0] - start[0]) + abs(pt[1] - start[1]) > 1.0
-        if pid is not None and moved:
-            p = session.state.design.patch(pid)
-            session.move(pid, (p.centre_mm[0] + pt[0] - start[0], p.centre_mm[1] + pt[1] - start[1]))
-        elif pid is None and not moved:
+        dx, dy = pt[0] - start[0], pt[1] - start[1]
+        moved = abs(dx) + abs(dy) > 1.0
+        if pid is not None and moved and pid in session.state.selection:
+            if len(session.state.selection) > 1:
+                session.move_selection(dx, dy)
+            else:
+                p = session.state.design.patch(pid)
+                session.move(pid, (p.centre_mm[0] + dx, p.centre_mm[1] + dy))
+        elif pid is None and moved:
+            session.pan(dx, dy)
+        elif pid is None and not shift:
             session.add(pt)
+
+    @guarded
+    def on_wheel(px, py, w, h, delta):
+        pt = canvas.to_mm(session.view(), px, py, w, h)
+        session.zoom(ZOOM_STEP if float(delta) < 0 else 1.0 / ZOOM_STEP, pt)
 
     @state.change("diameter", "fill", "patch_state")
     def on_slider(diameter, fill, patch_state, **_):
@@ -210,7 +241,15 @@ def build_app(session, server=None):
             on_delete()
 
     def on_delete():
-        guarded(session.remove)(session.state.selected)
+        guarded(session.remove_selection)()
+
+    def on_composite():
+        core = state.core_d if state.composite_on else None
+        guarded(session.set_composite)(None if core in (None, "") else float(core),
+                                       None if core in (None, "") else float(state.core_fill))
+
+    def on_conductive():
+        guarded(session.set_conductive)(state.conductive)
 
     def on_violation(index):
         v = session.violations[index]
@@ -222,6 +261,8 @@ def build_app(session, server=None):
                       os.path.dirname(os.path.abspath(session.document.path)), "fabrication"),
                   "target_h": 15.0, "target_ra": "", "target_dmax": "", "target_pmin": "",
                   "diameter": 60.0, "fill": 0.5, "patch_state": "up", "readout_stamp": 0,
+                  "selection": [], "composite_on": False, "core_d": 20.0, "core_fill": 0.9,
+                  "conductive": "",
                   "timings": {}})
 
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
@@ -234,6 +275,10 @@ def build_app(session, server=None):
             v3.VBtn("Undo", click=guarded(session.undo), disabled=("!can_undo",), id="undo")
             v3.VBtn("Redo", click=guarded(session.redo), disabled=("!can_redo",), id="redo")
             v3.VBtn("Save", click=on_save, id="save")
+            v3.VBtn("-", click=guarded(lambda: session.zoom(1.0 / ZOOM_STEP)), id="zoom-out",
+                    size="small")
+            v3.VBtn("Fit", click=guarded(session.fit_view), id="fit-view", size="small")
+            v3.VBtn("+", click=guarded(lambda: session.zoom(ZOOM_STEP)), id="zoom-in", size="small")
             html.Span("{{ dirty ? 'unsaved changes' : 'saved' }}", classes="text-caption mx-2",
                       id="dirty")
             html.Span("{{ edits }}", id="edits", style="display:none")
@@ -244,6 +289,9 @@ def build_app(session, server=None):
             drawer.width = 380
             with html.Div(v_if="mode == 'design'", classes="pa-2"):
                 html.H4("Patch {{ selected || '(none: click a piece to add one)' }}", id="inspector-title")
+                html.Div("{{ selection.length }} selected (Shift+click adds or removes; drag moves "
+                         "them all, Delete removes them all)", v_if="selection.length > 1",
+                         id="multi", classes="text-caption")
                 with html.Div(v_if="selected"):
                     with html.Div(id="slider-d"):
                         v3.VSlider(v_model=("diameter",), label="d (mm)", min=20, max=150, step=0.5,
@@ -258,6 +306,19 @@ def build_app(session, server=None):
                              "{{ readout.force }} N {{ readout.message }}", id="readout",
                              classes="text-body-2 my-1")
                     html.Div(v_html=("profile_svg",), id="profile")
+                    with html.Div(classes="d-flex align-center", id="composite"):
+                        v3.VCheckbox(v_model=("composite_on",), label="composite core",
+                                     density="compact", hide_details=True, id="composite-on")
+                        v3.VTextField(v_model=("core_d",), label="core d (mm)", density="compact",
+                                      hide_details=True, disabled=("!composite_on",), id="core-d")
+                        v3.VTextField(v_model=("core_fill",), label="core fill", density="compact",
+                                      hide_details=True, disabled=("!composite_on",), id="core-fill")
+                        v3.VBtn("Set", click=on_composite, size="x-small", id="set-composite")
+                    with html.Div(classes="d-flex align-center", id="conductive"):
+                        v3.VTextField(v_model=("conductive",), label="conductive (ring:0, index:..., "
+                                      "annulus:IN:OUT)", density="compact", hide_details=True,
+                                      id="conductive-text")
+                        v3.VBtn("Set", click=on_conductive, size="x-small", id="set-conductive")
                     v3.VBtn("Delete patch", click=on_delete,
                             size="small", id="delete")
                 v3.VDivider(classes="my-2")
@@ -299,6 +360,7 @@ def build_app(session, server=None):
             with html.Div(style="display:flex; height:100%; width:100%"):
                 html.Div(v_html=("canvas_svg",), id="canvas", style="flex:1; min-width:0; user-select:none",
                          mousedown=(on_down, POINTER), mouseup=(on_up, POINTER), tabindex="0",
+                         wheel=(on_wheel, WHEEL),
                          keydown=(on_key, "[$event.key]"))
                 with html.Div(style="flex:1; min-width:0", id="view3d"):
                     # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js has

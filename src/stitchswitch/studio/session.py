@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import time
 
+from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.fabrication.fabricate import FabricateOptions
+from stitchswitch.layout.garment.design import CompositeSpec
 from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import canvas, fabrication, inverse_panel, live_check
 from stitchswitch.studio.readout import heights_mm, readout
@@ -29,6 +31,8 @@ class Session:
         self.violations: list = []
         self.candidates: list = []
         self.order = None
+        self.view_box = None              # the canvas's zoomed / panned view (None: fit)
+        self.dragging: tuple = ()         # patches being dragged (their edge rule is drawn)
         self.timings_s: dict = {}       # wall and CPU (process) time of the last check and scene
         self.refresh_check()
 
@@ -68,10 +72,25 @@ class Session:
     def canvas_svg(self) -> str:
         hoops = fabrication.hooping_outlines(self.order, self.eta) if self.order is not None else ()
         return canvas.svg(self.state.design, heights_mm(self.dmap, self.state.design), self.eta,
-                          self.state.selected, live_check.patch_status(self.violations), hoops)
+                          self.state.selected, live_check.patch_status(self.violations), hoops,
+                          self.view(), self.state.also_selected, self.dragging,
+                          self.checker.limits)
 
     def view(self):
-        return canvas.view_of(self.state.design)
+        return self.view_box or canvas.view_of(self.state.design)
+
+    # --- the canvas's view --------------------------------------------------------------
+    def zoom(self, factor: float, about_mm=None) -> None:
+        """Zoom by ``factor`` (> 1 in) about a garment point (default: the view's centre)."""
+        v = self.view()
+        about = about_mm if about_mm is not None else (v.x0 + v.width / 2, -(v.y0 + v.height / 2))
+        self.view_box = canvas.zoomed(v, factor, about, canvas.view_of(self.state.design))
+
+    def pan(self, dx_mm: float, dy_mm: float) -> None:
+        self.view_box = canvas.panned(self.view(), dx_mm, dy_mm)
+
+    def fit_view(self) -> None:
+        self.view_box = None
 
     # --- actions ------------------------------------------------------------------------
     def add(self, centre_mm) -> str:
@@ -92,6 +111,32 @@ class Session:
     def remove(self, patch_id) -> None:
         self.state.remove_patch(patch_id)
         self.after_edit()
+
+    def remove_selection(self) -> None:
+        self.state.remove_patches(self.state.selection)
+        self.after_edit()
+
+    def move_selection(self, dx_mm: float, dy_mm: float) -> None:
+        self.state.move_patches(self.state.selection, dx_mm, dy_mm)
+        self.after_edit()
+
+    def set_composite(self, core_diameter_mm: float | None, core_fill: float | None = None) -> None:
+        """Give the selected patch a composite core (None: none), one undo step."""
+        core = None if core_diameter_mm is None else CompositeSpec(float(core_diameter_mm),
+                                                                   float(core_fill))
+        self.state.edit_patch(self._selected_id(), own_step=True, composite=core)
+        self.after_edit()
+
+    def set_conductive(self, selection: str | None) -> None:
+        """Set the selected patch's conductive triangles (``ring:0``, ...; None or "": none)."""
+        self.state.edit_patch(self._selected_id(), own_step=True,
+                              conductive=(selection or "").strip() or None)
+        self.after_edit()
+
+    def _selected_id(self) -> str:
+        if self.state.selected is None:
+            raise InvalidInputError("select a patch first")
+        return self.state.selected
 
     def undo(self) -> None:
         self.state.undo()
