@@ -72,6 +72,32 @@ def test_studio_in_chromium(tmp_path):
             drag(page, to_px(page, view, 60.0, 150.0), to_px(page, view, 100.0, 150.0))
             page.wait_for_function("Number(document.querySelector('#canvas circle[data-patch=p1]')"
                                    ".getAttribute('cx')) > 90")
+            # zoom in on the canvas and back (toolbar), the rulers follow
+            box0 = page.locator("#canvas svg").get_attribute("viewBox")
+            page.locator("#zoom-in").click()
+            page.wait_for_function(f"document.querySelector('#canvas svg').getAttribute('viewBox') != '{box0}'")
+            assert float(page.locator("#canvas svg").get_attribute("viewBox").split()[2]) < float(box0.split()[2])
+            assert page.locator("#canvas [data-ruler-x]").count() > 2
+            page.locator("#fit-view").click()
+            page.wait_for_function(f"document.querySelector('#canvas svg').getAttribute('viewBox') == '{box0}'")
+            # holding the patch draws the piece-edge rule; releasing in place changes nothing
+            page.mouse.move(*to_px(page, view, 100.0, 150.0))
+            page.mouse.down()
+            page.wait_for_selector("#canvas [data-guide=centre]")
+            page.mouse.up()
+            page.wait_for_function("!document.querySelector('#canvas [data-guide]')")
+            # Shift+click adds the pocket to the selection, Shift+click again takes it out
+            pocket = design.patches[0]
+            page.keyboard.down("Shift")
+            page.mouse.click(*to_px(page, view, *pocket.centre_mm))
+            page.keyboard.up("Shift")
+            page.wait_for_selector("#multi")
+            page.keyboard.down("Shift")
+            page.mouse.click(*to_px(page, view, *pocket.centre_mm))
+            page.keyboard.up("Shift")
+            page.wait_for_function("!document.querySelector('#multi')")
+            page.mouse.click(*to_px(page, view, 100.0, 150.0))
+            page.wait_for_function("document.querySelector('#inspector-title').innerText == 'Patch p1'")
             # the fill slider: the readout and the 3D view change
             h0 = readout_h(page)
             before = page.locator("#view3d").screenshot()
@@ -119,9 +145,20 @@ def test_studio_in_chromium(tmp_path):
             page.locator("#export-dir input").fill(str(out))
             page.locator("#export").click()
             page.locator(".exported").first.wait_for(timeout=120000)
+            # the first hooping's stitch plan, and a download of its machine file from the page
+            page.locator(".hooping").first.click()
+            page.wait_for_selector("#plan-svg polyline", timeout=60000)
+            assert int(re.search(r"(\d+) stitches", page.locator("#plan-counts").inner_text()).group(1)) > 100
             shot(page, tmp_path, "fabrication")
+            link = page.locator(".download", has_text=re.compile(r"hoop0?1\.jef"))
+            with page.expect_download() as dl:
+                link.click()
+            downloaded = tmp_path / "downloaded.jef"
+            dl.value.save_as(downloaded)
     assert log[-1] == "exit code 0\n"            # Ctrl-C (SIGINT) stopped it cleanly
     sheet = json.loads((out / "fabrication.json").read_text())
+    first = sheet["hoopings"][0]["files"]["embroidery"]
+    assert downloaded.read_bytes() == (out / first).read_bytes()
     assert sorted(p["id"] for h in sheet["hoopings"] for p in h["patches"]) == ["p1", "pocket1"]
     for h in sheet["hoopings"]:
         # the stitches span the hooping's patches: centres in hoop mm +- d / 2 (0.1 mm units)

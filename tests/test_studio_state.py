@@ -289,3 +289,62 @@ def test_canvas_zoom_pan_rulers_and_drag_guides(design_file):
     assert ring[:, 0].min() == pytest.approx(inset, abs=0.05)
     assert -ring[:, 1].max() == pytest.approx(inset, abs=0.05)  # y negated in the SVG
     assert 'data-guide="seam"' in svg
+
+
+def test_stitch_plan_preview_and_downloads(tmp_path, design_file):
+    doc, design = Document.open(design_file)
+    session = Session(doc, design, default_map())
+    c = centre(design)
+    session.add((c[0] - 40, c[1]))
+    session.add((c[0] + 40, c[1]))
+    with pytest.raises(InvalidInputError, match="group"):
+        session.plan_preview(0)
+    session.group("garment")
+    svg, n = session.plan_preview(0)
+    runs = [np.array([[float(v) for v in pt.split(",")] for pt in m.split()])
+            for m in re.findall(r'<polyline data-run="\d+" points="([^"]+)"', svg)]
+    assert runs and n["stitches"] > 100 and n["minutes"] > 0
+    shown = np.vstack(runs) * [1.0, -1.0]                       # back to hoop mm, y up
+    with pytest.raises(InvalidInputError, match="hooping 9"):
+        session.plan_preview(8)
+    session.save()
+    result = session.export(tmp_path / "out")
+    first = result.doc.as_dict()["hoopings"][0]                # stitched first
+    jef_bytes = session.exported_file(first["files"]["embroidery"])
+    assert jef_bytes == (tmp_path / "out" / first["files"]["embroidery"]).read_bytes()
+    xy = np.array([(x, y) for kind, x, y in jef.decode(jef_bytes).records if kind == "stitch"]) / 10.0
+    # the preview is the machine file's plan: the same stitch extent (0.1 mm units in the file)
+    assert np.ptp(shown, axis=0) == pytest.approx(np.ptp(xy, axis=0), abs=0.3)
+    with pytest.raises(InvalidInputError, match="not a file of the last export"):
+        session.exported_file("../d.json")
+
+
+def test_size_picker_puts_the_design_on_another_size(tmp_path):
+    from pathlib import Path
+
+    from stitchswitch.layout.garment.dxf.reader import import_dxf
+    from stitchswitch.layout.garment.piece_select import select_pieces
+
+    tank = Path(__file__).parent / "data/external/dxf/WM_LOOSE_SHAPE_TANK_AAMA.DXF"
+    pattern = import_dxf(tank)
+    start = Design(1, select_pieces(pattern, "26"), (), MaterialRef("default"), MachineSpec(),
+                   path=str(tmp_path / "tank.json"))
+    session = Session(Document(start.path, start), start, default_map(), pattern=pattern)
+    assert session.sizes[:2] == ["26", "28"] and len(session.sizes) == 14 and session.size == "26"
+    front = session.state.design.pieces[0]
+    pid = session.add(tuple(front.outline_mm.mean(axis=0)))
+    where = session.state.design.patch(pid).centre_mm
+    session.set_size("36")
+    d = session.state.design
+    assert session.size == "36" and [p.name for p in d.pieces] == [p.name for p in start.pieces]
+    assert np.allclose(d.pieces[0].outline_mm, select_pieces(pattern, "36")[0].outline_mm, atol=1e-6)
+    assert d.patch(pid).centre_mm == where                     # the patch stays where it was
+    assert [repr(v) for v in session.violations] == [repr(v) for v in check_design(d)]
+    session.undo()
+    assert session.size == "26" and len(session.state.design.patches) == 1
+    with pytest.raises(InvalidInputError, match="XL"):
+        session.set_size("XL")
+    bare = Session(Document(start.path, start), start, default_map())
+    assert bare.sizes == []
+    with pytest.raises(InvalidInputError, match="graded pattern"):
+        bare.set_size("36")

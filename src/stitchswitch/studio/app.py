@@ -8,7 +8,8 @@ patch, a drag from an empty spot pans, the wheel and the toolbar's - / Fit / + z
 removes the selection), the inspector (diameter and fill sliders, state, the live readout,
 the composite core and the conductive triangles), the 3D view (WebGL in the browser, the
 scene of ``scene3d``), the inverse-design panel and the constraint panel. Fabrication Mode:
-hoop grouping drawn on the canvas, and export of the fabrication folder.
+hoop grouping drawn on the canvas, each hooping's stitch plan (a click on it), export of the
+fabrication folder and a download link for each exported file.
 """
 from __future__ import annotations
 
@@ -81,6 +82,7 @@ def build_app(session, server=None):
             push_readout()
             state.selected = s.selected
             state.selection = list(s.selection)
+            state.size = session.size
             if p is not None:
                 state.diameter, state.fill, state.patch_state = p.diameter_mm, p.fill, p.state
                 state.composite_on = p.composite is not None
@@ -179,6 +181,11 @@ def build_app(session, server=None):
         pt = canvas.to_mm(session.view(), px, py, w, h)
         session.zoom(ZOOM_STEP if float(delta) < 0 else 1.0 / ZOOM_STEP, pt)
 
+    @state.change("size")
+    def on_size(size, **_):
+        if size and session.sizes and size != session.size:
+            guarded(session.set_size)(size)
+
     @state.change("diameter", "fill", "patch_state")
     def on_slider(diameter, fill, patch_state, **_):
         p = session.state.selected_patch()
@@ -216,9 +223,22 @@ def build_app(session, server=None):
 
     def on_group():
         guarded(session.group)(state.fab_mode)
+        state.plan_k, state.plan_svg = 0, ""
         if session.order is not None:
             state.hoopings = [{"k": k, "hoop": h.hoop.name, "patches": ", ".join(h.patch_ids)}
                               for k, h in enumerate(session.order.hoopings, start=1)]
+
+    def on_plan(k):
+        try:
+            state.plan_svg, state.plan_counts = session.plan_preview(int(k) - 1)
+            state.plan_k = int(k)
+        except (InvalidInputError, StitchSwitchError) as exc:
+            state.message = f"Error: {exc}"
+
+    @ctrl.trigger("studio_file")
+    def exported_file(name):
+        """The bytes of an exported file, for the page's download links."""
+        return session.exported_file(name)
 
     def on_export():
         try:
@@ -262,7 +282,8 @@ def build_app(session, server=None):
                   "target_h": 15.0, "target_ra": "", "target_dmax": "", "target_pmin": "",
                   "diameter": 60.0, "fill": 0.5, "patch_state": "up", "readout_stamp": 0,
                   "selection": [], "composite_on": False, "core_d": 20.0, "core_fill": 0.9,
-                  "conductive": "",
+                  "conductive": "", "sizes": session.sizes, "size": session.size,
+                  "plan_k": 0, "plan_svg": "", "plan_counts": {},
                   "timings": {}})
 
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
@@ -275,6 +296,9 @@ def build_app(session, server=None):
             v3.VBtn("Undo", click=guarded(session.undo), disabled=("!can_undo",), id="undo")
             v3.VBtn("Redo", click=guarded(session.redo), disabled=("!can_redo",), id="redo")
             v3.VBtn("Save", click=on_save, id="save")
+            with html.Div(v_if="sizes.length > 1", id="size-picker", style="width:110px"):
+                v3.VSelect(v_model=("size",), items=("sizes",), label="size", density="compact",
+                           hide_details=True)
             v3.VBtn("-", click=guarded(lambda: session.zoom(1.0 / ZOOM_STEP)), id="zoom-out",
                     size="small")
             v3.VBtn("Fit", click=guarded(session.fit_view), id="fit-view", size="small")
@@ -348,13 +372,21 @@ def build_app(session, server=None):
                 v3.VSelect(v_model=("fab_mode",), items=("['garment', 'free']",), label="grouping",
                            density="compact")
                 v3.VBtn("Group into hoopings", click=on_group, size="small", id="group")
-                with html.Div(v_for="h in hoopings", key="h.k", classes="text-body-2 hooping"):
-                    html.Span("{{ h.k }}. {{ h.hoop }}: {{ h.patches }}")
+                with html.Div(v_for="h in hoopings", key="h.k", classes="text-body-2 hooping",
+                              click=(on_plan, "[h.k]"), style="cursor:pointer"):
+                    html.Span("{{ h.k }}. {{ h.hoop }}: {{ h.patches }} (stitch plan)")
+                with html.Div(v_if="plan_k", id="plan"):
+                    html.Div("Hooping {{ plan_k }}: {{ plan_counts.stitches }} stitches, "
+                             "{{ plan_counts.jumps }} jumps, {{ plan_counts.trims }} trims, "
+                             "{{ plan_counts.colour_changes }} colour changes, about "
+                             "{{ plan_counts.minutes }} min", classes="text-caption", id="plan-counts")
+                    html.Div(v_html=("plan_svg",), id="plan-svg")
                 with html.Div(id="export-dir"):
                     v3.VTextField(v_model=("export_dir",), label="export folder", density="compact")
                 v3.VBtn("Export", click=on_export, size="small", id="export")
                 with html.Div(v_for="f in exported", key="f", classes="text-caption exported"):
-                    html.Span("{{ f }}")
+                    html.A("{{ f }}", href="#", classes="download",
+                           click="utils.download(f, trigger('studio_file', [f])); $event.preventDefault()")
             html.Div("{{ message }}", id="message", classes="text-body-2 pa-2 text-red")
         with layout.content:
             with html.Div(style="display:flex; height:100%; width:100%"):

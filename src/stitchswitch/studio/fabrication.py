@@ -4,7 +4,8 @@
 ``fabricate.grouping_hoops`` on the footprints stretched by the material's eta, then
 ``order.order_hoopings``) for display;
 ``export`` calls ``layout.fabrication.fabricate.fabricate`` itself, so the folder is the one the
-CLI writes for the same design and options.
+CLI writes for the same design and options; ``hooping_plan`` plans one hooping's stitches as
+``fabricate`` does, for the page's stitch-plan preview (``stitch_preview``).
 """
 from __future__ import annotations
 
@@ -47,3 +48,20 @@ def hooping_outlines(order, eta: float) -> list:
         corners = np.array([[-w / 2, -hh / 2], [w / 2, -hh / 2], [w / 2, hh / 2], [-w / 2, hh / 2]])
         out.append((h.to_piece(corners) / eta, f"{k}: {h.hoop.name}"))
     return out
+
+
+def hooping_plan(design, order, k: int, options: FabricateOptions | None = None):
+    """The stitch plan (``plan.HoopingPlan``) of hooping ``k`` (0-based) of ``order``, as
+    ``fabricate`` plans it for its machine file (same geometry resolution and stitch speed)."""
+    from stitchswitch.layout.embroidery import export as formats
+    from stitchswitch.layout.embroidery.machines import catalogue
+    from stitchswitch.layout.embroidery.patch_design import geometry_for
+    from stitchswitch.layout.embroidery.stitches import StitchParams
+    from stitchswitch.layout.fabrication.plan import plan_hooping
+
+    options = options or FabricateOptions()
+    machine = catalogue(options.machines_file, formats.supported_formats()).machine(
+        options.machine or design.machine.name)
+    specs = {p.id: p for p in design.patches}
+    return plan_hooping(order.hoopings[k], specs, lambda s: geometry_for(s, options.resolution_mm),
+                        StitchParams(stitches_per_minute=machine.stitches_per_minute))

@@ -6,24 +6,28 @@ design stays as it was.
 """
 from __future__ import annotations
 
+import os
 import time
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.fabrication.fabricate import FabricateOptions
 from stitchswitch.layout.garment.design import CompositeSpec
 from stitchswitch.reduced.design_space.inverse import InverseTarget
-from stitchswitch.studio import canvas, fabrication, inverse_panel, live_check
+from stitchswitch.studio import canvas, fabrication, inverse_panel, live_check, stitch_preview
 from stitchswitch.studio.readout import heights_mm, readout
 from stitchswitch.studio.state import StudioState
 
 
 class Session:
-    """``scene3d`` (a ``scene3d.Scene3D``) may be None (no 3D view). The check is rerun after
+    """``scene3d`` (a ``scene3d.Scene3D``) may be None (no 3D view). ``pattern``: the pieces
+    of the graded pattern the design was started from (``dxf.reader.Piece``, every size), for
+    the size picker; None otherwise. The check is rerun after
     every action (incrementally, ``live_check.LiveCheck``); the 3D scene is not: the page calls
     ``refresh_scene`` once it has shown the check, so the panel never waits for the scene."""
 
-    def __init__(self, document, design, dmap, scene3d=None):
+    def __init__(self, document, design, dmap, scene3d=None, pattern=None):
         self.document = document
+        self.pattern = None if pattern is None else tuple(pattern)
         self.state = StudioState(design)
         self.dmap = dmap
         self.scene3d = scene3d
@@ -31,6 +35,8 @@ class Session:
         self.violations: list = []
         self.candidates: list = []
         self.order = None
+        self.order_mode = "garment"
+        self.exported = None              # the last export's FabricationResult
         self.view_box = None              # the canvas's zoomed / panned view (None: fit)
         self.dragging: tuple = ()         # patches being dragged (their edge rule is drawn)
         self.timings_s: dict = {}       # wall and CPU (process) time of the last check and scene
@@ -92,7 +98,30 @@ class Session:
     def fit_view(self) -> None:
         self.view_box = None
 
+    @property
+    def sizes(self) -> list[str]:
+        """The sizes of the pattern (empty without one)."""
+        return [] if self.pattern is None else list(dict.fromkeys(p.size for p in self.pattern))
+
+    @property
+    def size(self) -> str | None:
+        """The size of the design's pieces."""
+        return self.state.design.pieces[0].size if self.state.design.pieces else None
+
     # --- actions ------------------------------------------------------------------------
+    def set_size(self, size: str) -> None:
+        """Put the design on another size of its pattern (``select_pieces``, as ``import
+        --size`` does), one undo step; the view fits the new pieces."""
+        from stitchswitch.layout.garment.piece_select import select_pieces
+
+        if self.pattern is None:
+            raise InvalidInputError("the design was not started from a graded pattern")
+        names = [p.name for p in self.state.design.pieces]
+        source = self.state.design.pieces[0].source if self.state.design.pieces else None
+        self.state.set_pieces(select_pieces(self.pattern, size, names, source))
+        self.view_box = None
+        self.after_edit()
+
     def add(self, centre_mm) -> str:
         pid = self.state.add_patch(centre_mm)
         self.after_edit()
@@ -161,8 +190,29 @@ class Session:
 
     def group(self, mode: str = "garment") -> None:
         _, self.order = fabrication.hoopings(self.state.design, FabricateOptions(mode=mode))
+        self.order_mode = mode
+
+    def plan_preview(self, k: int) -> tuple[str, dict]:
+        """(SVG, counts) of the stitch plan of hooping ``k`` (0-based) of the last grouping."""
+        if self.order is None:
+            raise InvalidInputError("group the design into hoopings first")
+        if not 0 <= k < len(self.order.hoopings):
+            raise InvalidInputError(f"hooping {k + 1}: there are {len(self.order.hoopings)}")
+        plan = fabrication.hooping_plan(self.state.design, self.order, k,
+                                        FabricateOptions(mode=self.order_mode))
+        h = self.order.hoopings[k]
+        return (stitch_preview.plan_svg(plan.plan, h, f"hooping {k + 1}: {h.hoop.name}"),
+                stitch_preview.counts(plan.plan))
 
     def export(self, outdir, mode: str = "garment", force: bool = False):
         saved = not self.document.dirty(self.state.design)
-        return fabrication.export(self.state.design, outdir, FabricateOptions(mode=mode, force=force),
-                                  saved)
+        self.exported = fabrication.export(self.state.design, outdir,
+                                           FabricateOptions(mode=mode, force=force), saved)
+        return self.exported
+
+    def exported_file(self, name: str) -> bytes:
+        """The bytes of file ``name`` of the last export (only its files can be read)."""
+        if self.exported is None or name not in self.exported.files:
+            raise InvalidInputError(f"{name!r} is not a file of the last export")
+        with open(os.path.join(self.exported.outdir, name), "rb") as f:
+            return f.read()

@@ -184,5 +184,19 @@ class StudioState:
         self._commit(self.design.with_patches([moved.get(p.id, p) for p in self.design.patches]),
                      self.selected, also=self.also_selected)
 
+    def set_pieces(self, pieces) -> None:
+        """Replace the pieces (another size of a graded pattern) in one undo step; every patch
+        keeps its piece name and garment position, so each piece of the new size must have the
+        name of a piece a patch is on (the check then judges the patches on the new outlines)."""
+        names = {p.name for p in pieces}
+        lost = [p for p in self.design.patches if p.piece not in names]
+        if lost:
+            raise InvalidInputError(f"patch {lost[0].id} is on piece {lost[0].piece!r}, which "
+                                    "the new pieces do not have (" + ", ".join(sorted(names)) + ")")
+        import dataclasses
+
+        self._commit(dataclasses.replace(self.design, pieces=tuple(pieces)), self.selected,
+                     also=self.also_selected)
+
     def _with(self, new) -> Design:
         return self.design.with_patches([new if p.id == new.id else p for p in self.design.patches])
