@@ -348,3 +348,16 @@ def test_size_picker_puts_the_design_on_another_size(tmp_path):
     assert bare.sizes == []
     with pytest.raises(InvalidInputError, match="graded pattern"):
         bare.set_size("36")
+
+
+def test_deferred_autosave(design_file):
+    doc, design = Document.open(design_file)
+    session = Session(doc, design, default_map())
+    session.autosave_later = True
+    session.add(centre(design))
+    assert not os.path.exists(sidecar_path(design_file))      # left to the page, right after
+    session.write_autosave()
+    assert Document.open(design_file)[0].recover() == session.state.design
+    session.autosave_later = False
+    session.undo()
+    assert Document.open(design_file)[0].recover() == session.state.design

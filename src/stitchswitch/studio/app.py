@@ -60,6 +60,7 @@ def build_app(session, server=None):
     state, ctrl = server.state, server.controller
     pl = _plotter()
     view_sync = PlotterSync(pl)
+    session.autosave_later = True
     drag = {"id": None, "start": None}
     pending = {"check": None, "scene": None}
     camera = {"set": False}
@@ -97,6 +98,7 @@ def build_app(session, server=None):
             state.n_patches = len(s.design.patches)
             state.edits = s.changed
         state.flush()
+        session.write_autosave()
 
     def push_scene() -> None:
         pending["scene"] = None

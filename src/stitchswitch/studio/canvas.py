@@ -72,10 +72,11 @@ def _f(v: float) -> str:
     return f"{v:.2f}"
 
 
-def _height_colour(h, hmax: float) -> str:
-    if h is None:
-        return "#bbbbbb"
-    return to_hex(colormaps["coolwarm"](Normalize(-hmax, hmax)(h)))
+def _height_colours(heights, hmax: float) -> list[str]:
+    """The fill of each height (None: grey), one colour-map call for all."""
+    known = np.array([0.0 if h is None else h for h in heights], dtype=float)
+    rgba = colormaps["coolwarm"](Normalize(-hmax, hmax)(known)) if known.size else []
+    return ["#bbbbbb" if h is None else to_hex(c) for h, c in zip(heights, rgba)]
 
 
 def _ruler_step(width_mm: float) -> float:
@@ -173,7 +174,8 @@ def svg(design, heights: dict, eta: float, selected: str | None = None, status: 
                    f'text-anchor="middle">{escape(piece.name)}</text>')
     known = [abs(h) for h in heights.values() if h is not None]
     hmax = max(known + [1.0])
-    for p in design.patches:
+    fills = _height_colours([heights.get(p.id) for p in design.patches], hmax)
+    for p, fill in zip(design.patches, fills):
         r = p.diameter_mm / (2.0 * eta)
         x, y = p.centre_mm
         stroke = STATUS_STROKE.get(status.get(p.id), "#333")
@@ -181,7 +183,7 @@ def svg(design, heights: dict, eta: float, selected: str | None = None, status: 
         width = 3 if chosen else (2 if p.id in status else 0.8)
         dash = ' stroke-dasharray="4 2"' if chosen else ""
         out.append(f'<circle data-patch="{escape(p.id)}" cx="{_f(x)}" cy="{_f(-y)}" r="{_f(r)}" '
-                   f'fill="{_height_colour(heights.get(p.id), hmax)}" fill-opacity="0.85" '
+                   f'fill="{fill}" fill-opacity="0.85" '
                    f'stroke="{stroke}" stroke-width="{width}"{dash}/>')
         out.append(f'<text x="{_f(x)}" y="{_f(-y + 3)}" font-size="9" text-anchor="middle" '
                    f'pointer-events="none">{escape(p.id)}</text>')

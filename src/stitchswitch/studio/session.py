@@ -40,6 +40,10 @@ class Session:
         self.view_box = None              # the canvas's zoomed / panned view (None: fit)
         self.dragging: tuple = ()         # patches being dragged (their edge rule is drawn)
         self.timings_s: dict = {}       # wall and CPU (process) time of the last check and scene
+        #: True: an edit leaves the sidecar to ``write_autosave`` (the page writes it right after
+        #: showing the edit, so the panel does not wait for the disk)
+        self.autosave_later = False
+        self._autosave_due = False
         self.refresh_check()
 
     @property
@@ -66,10 +70,19 @@ class Session:
         self.refresh_scene()
 
     def after_edit(self, refresh: bool = True) -> None:
-        self.document.autosave(self.state.design)
+        if self.autosave_later:
+            self._autosave_due = True
+        else:
+            self.document.autosave(self.state.design)
         self.order = None
         if refresh:
             self.refresh_check()
+
+    def write_autosave(self) -> None:
+        """Write the autosave sidecar an edit left due (``autosave_later``)."""
+        if self._autosave_due:
+            self._autosave_due = False
+            self.document.autosave(self.state.design)
 
     def selected_readout(self):
         p = self.state.selected_patch()
