@@ -25,7 +25,8 @@ scene and fetched the new arrays) has fired for the edit. The server's share: ``
 (incremental, ``studio.live_check.LiveCheck``), ``scene`` (``preview3d.scene.SceneBuilder``:
 only the changed parts are rebuilt), ``sync`` (the pyvista actors of the changed parts),
 ``view_send`` (trame-vtk serializing the scene state and the new arrays' checksums), each as
-wall time and, with the suffix ``cpu``, as the server process's CPU time.
+wall time and, with the suffix ``cpu``, as the server process's CPU time; ``browser task``:
+the page's main-thread task time over the whole step (``BrowserTime``), the browser's share.
 
 The machine is shared: the 1-minute load average is printed with the figures.
 
@@ -75,6 +76,20 @@ def _wait_scene(page, above: int, loads: int) -> None:
         polling="raf", timeout=30000)
 
 
+class BrowserTime:
+    """The page's main-thread task time (Chrome DevTools ``Performance.getMetrics``
+    ``TaskDuration``, seconds): the browser's own work, much less sensitive to the machine's
+    load than wall time."""
+
+    def __init__(self, page):
+        self.cdp = page.context.new_cdp_session(page)
+        self.cdp.send("Performance.enable")
+
+    def __call__(self) -> float:
+        metrics = self.cdp.send("Performance.getMetrics")["metrics"]
+        return next(m["value"] for m in metrics if m["name"] == "TaskDuration")
+
+
 def measure(runs: int) -> dict:
     from stitchswitch.layout.garment.design_io import load_design
     from stitchswitch.studio.canvas import view_of
@@ -101,9 +116,11 @@ def measure(runs: int) -> dict:
                 page.wait_for_selector("#slider-fill .v-slider-thumb")
                 thumb = page.locator("#slider-fill .v-slider-thumb")
                 thumb.focus()
-                slider, readout, check, server = [], [], [], []
+                task = BrowserTime(page)
+                slider, readout, check, server, slider_task, move_task = [], [], [], [], [], []
                 for k in range(runs):
                     before, loads = _stamp(page, "#edits"), _loads(page)
+                    b0 = task()
                     t = time.perf_counter()
                     page.keyboard.press("ArrowLeft" if k % 2 else "ArrowRight")
                     _wait_stamp(page, "#readout-stamp", before)
@@ -112,6 +129,7 @@ def measure(runs: int) -> dict:
                     check.append(time.perf_counter() - t)
                     _wait_scene(page, before, loads)
                     slider.append(time.perf_counter() - t)
+                    slider_task.append(task() - b0)
                     server.append(json.loads(page.locator("#timings").inner_text()))
                 move, move_3d = [], []
                 x, y = p.centre_mm
@@ -121,12 +139,14 @@ def measure(runs: int) -> dict:
                     page.mouse.move(*to_px(page, view, x, y))
                     page.mouse.down()
                     page.mouse.move(*to_px(page, view, x + dx, y), steps=2)
+                    b0 = task()
                     t = time.perf_counter()
                     page.mouse.up()
                     _wait_stamp(page, "#edits", before)
                     move.append(time.perf_counter() - t)
                     _wait_scene(page, before, loads)
                     move_3d.append(time.perf_counter() - t)
+                    move_task.append(task() - b0)
                     server.append(json.loads(page.locator("#timings").inner_text()))
                     x += dx
     slider_rows, move_rows = server[:runs], server[runs:]
@@ -136,7 +156,8 @@ def measure(runs: int) -> dict:
                    for k in move_rows[0] if k.endswith("_s")}
     return {"server_start": [server_start], "first_load": [first_load],
             "first_scene": [first_scene], "slider_readout": readout,
-            "slider_check": check, "slider": slider, **phases, "move": move, "move_3d": move_3d,
+            "slider_check": check, "slider": slider, "  browser task (slider)": slider_task,
+            **phases, "move": move, "move_3d": move_3d, "  browser task (move)": move_task,
             **{k + " (move)": v for k, v in move_phases.items()}}
 
 
