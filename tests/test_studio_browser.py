@@ -43,6 +43,16 @@ def readout_h(page) -> float:
     return float(re.match(r"h (-?[\d.]+) mm", page.locator("#readout").inner_text()).group(1))
 
 
+def scene_loads(page) -> int:
+    return int(page.evaluate("window.studioSceneLoads || 0"))
+
+
+def wait_scene(page, loads: int) -> None:
+    """Until the 3D view has loaded a newer scene than the one counted in ``loads``."""
+    page.wait_for_function(f"(window.studioSceneLoads || 0) > {loads} && !window.studioSceneBusy",
+                           timeout=60000)
+
+
 def errors(page) -> int:
     return int(re.search(r"Constraints: (\d+) error", page.locator("#check-title").inner_text()).group(1))
 
@@ -101,11 +111,13 @@ def test_studio_in_chromium(tmp_path):
             # the fill slider: the readout and the 3D view change
             h0 = readout_h(page)
             before = page.locator("#view3d").screenshot()
+            loads = scene_loads(page)
             thumb = page.locator("#slider-fill .v-slider-thumb")
             thumb.focus()
             for _ in range(30):
                 page.keyboard.press("ArrowRight")
             page.wait_for_function(f"!document.querySelector('#readout').innerText.startsWith('h {h0} ')")
+            wait_scene(page, loads)
             page.wait_for_timeout(500)
             assert readout_h(page) != h0
             assert page.locator("#view3d").screenshot() != before
@@ -123,9 +135,11 @@ def test_studio_in_chromium(tmp_path):
             assert errors(page) == 0
             # over the piece edge (the waist): a violation, then undo clears it
             top = float(design.pieces[0].outline_mm[:, 1].max())
+            loads = scene_loads(page)
             drag(page, to_px(page, view, 100.0, 150.0), to_px(page, view, 100.0, top - 5.0))
             page.wait_for_function("/Constraints: [1-9]/.test(document.querySelector('#check-title').innerText)")
             assert page.locator(".violation").count() >= 1
+            wait_scene(page, loads)                    # the 3D view draws it flagged too
             shot(page, tmp_path, "violation")
             page.locator("#undo").click()
             page.wait_for_function("/Constraints: 0 /.test(document.querySelector('#check-title').innerText)")

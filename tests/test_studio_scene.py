@@ -12,7 +12,7 @@ from stitchswitch.preview3d import colours
 from stitchswitch.preview3d.scene import SceneBuilder, build_scene
 from stitchswitch.preview3d.spec import spec_from_design
 from stitchswitch.studio.live_check import LiveCheck
-from stitchswitch.studio.scene3d import PlotterSync, Scene3D
+from stitchswitch.studio.scene3d import PlotterSync, Scene3D, group_of
 from stitchswitch.studio.state import StudioState
 
 
@@ -137,16 +137,20 @@ def test_view_actors_follow_the_scene_and_show_the_check():
     pl = pv.Plotter(off_screen=True)
     try:
         sync = PlotterSync(pl)
-        n = len(s.design.patches)
-        assert sync.sync(scene3d)["added"] == 1 + n + 2      # piece, patches, two outline actors
+        groups = {group_of(p.id) for p in s.design.patches}
+        assert sync.sync(scene3d)["added"] == 1 + len(groups) + 2   # piece, patch groups, outlines
         s.edit_patch("p5", fill=0.9)
         scene3d.update(s.design)
         counts = sync.sync(scene3d)
         assert counts["rebuilt"] == 2 and counts["added"] == counts["removed"] == 0   # surface, lines
-        mesh = sync.actors["patch:p5"][2]
-        z = scene3d.scene.patches[5].surface.points[:, 2]
+        name = f"patches:{group_of('p5')}"
+        content, actor, mesh = sync.actors[name]
+        assert [p.id for p in content] == [p.id for p in s.design.patches
+                                           if group_of(p.id) == group_of("p5")]
+        z = np.concatenate([p.surface.points[:, 2] for p in content])
         assert np.array_equal(mesh.point_data["height (mm)"], z)
-        assert tuple(sync.actors["patch:p5"][1].mapper.scalar_range) == scene3d.clim
+        assert scene3d.scene.patches[5] in content                  # the rebuilt surface is shown
+        assert tuple(actor.mapper.scalar_range) == scene3d.clim
         s.move_patch("p1", (10.0, 70.0))                         # over the edge: an error
         scene3d.update(s.design)
         violations = check_design(s.design)
@@ -159,8 +163,9 @@ def test_view_actors_follow_the_scene_and_show_the_check():
         assert "p1" not in [ln.name for ln in sync.actors["lines:patch:ok"][0]]
         s.remove_patch("p4")
         scene3d.update(s.design)
-        counts = sync.sync(scene3d, violations)
-        assert counts["removed"] == 1 and "patch:p4" not in sync.actors
+        sync.sync(scene3d, violations)
+        assert "p4" not in [p.id for name, (c, _, _) in sync.actors.items()
+                            if name.startswith("patches:") for p in c]
         s.undo()                                                 # p4 back
         s.undo()                                                 # p1 back in place
         scene3d.update(s.design)

@@ -114,8 +114,8 @@ def rulers(v: View) -> list[str]:
             out.append(f'<text x="{_f(v.x0 + band * 0.05)}" y="{_f(y - band * 0.1)}" '
                        f'font-size="{_f(size * 0.8)}" fill="#444" pointer-events="none" '
                        f'data-ruler-y="{-y:g}">{-y + 0.0:g}</text>')
-    out.append(f'<text x="{_f(v.x0 + v.width - band * 2.2)}" y="{_f(v.y0 + size)}" '
-               f'font-size="{_f(size)}" fill="#444" pointer-events="none">mm</text>')
+    out.append(f'<text x="{_f(v.x0 + band * 0.1)}" y="{_f(v.y0 + size)}" '
+               f'font-size="{_f(size * 0.8)}" fill="#444" pointer-events="none">mm</text>')
     return out
 
 

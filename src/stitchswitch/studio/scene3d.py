@@ -1,8 +1,9 @@
 """The 3D view's geometry: the design's scene built by ``preview3d.scene.SceneBuilder`` (the one
-scene builder of ``stitchswitch preview``, at a lighter resolution), one pyvista actor per piece, per patch surface and
-per outline, so that an edit changes only the actors of the parts it rebuilt and the browser
-view (trame's VTK local view, which sends an array only when its checksum is new) receives
-only their arrays.
+scene builder of ``stitchswitch preview``, at a lighter resolution), as a few pyvista actors:
+one per piece, one per group of patch surfaces (``group_of``), the outlines by check status;
+an edit changes only the actors holding the parts it rebuilt, and the browser view (trame's
+VTK local view, which sends an array only when its checksum is new) receives only their
+arrays.
 
 Surfaces are coloured by height (the preview's diverging map, symmetric about the flat
 fabric); the outlines show the constraint check: a patch's embroidery boundary, or a piece's
@@ -10,6 +11,10 @@ outline for a problem of the piece itself, is drawn red for an error and orange 
 (``preview3d.colours.STATUS_RGB``), thicker than the plain outlines.
 """
 from __future__ import annotations
+
+import zlib
+
+import numpy as np
 
 from stitchswitch.preview3d import colours
 from stitchswitch.preview3d.render import polylines
@@ -22,6 +27,10 @@ HEIGHT = "height (mm)"
 #: software WebGL and trame-vtk's checksums of every array on every update scale with it
 VIEW_N_THETA = 32
 VIEW_RING_STEP = 2
+#: patch surfaces are drawn by this many actors, a patch always in the same one (by its id):
+#: trame-vtk serializes every actor on every update (about 1 ms of CPU each), so one actor per
+#: patch costs more than resending a few patches' arrays with the edited one
+SURFACE_GROUPS = 8
 LINE_STYLE = {"piece": ("black", 2.0), "patch": ("#404040", 1.0)}
 FLAGGED_WIDTH = 4.0
 
@@ -43,13 +52,16 @@ class Scene3D:
         self.clim = colours.height_clim(self.scene)
 
     def parts(self, violations=()) -> dict:
-        """{actor name: (kind, content, style)}: one "surface" per piece and patch (content: the
-        part), and the outlines as few "lines" actors, one per kind and check status (content: a
-        tuple of lines; style: (colour, width))."""
+        """{actor name: (kind, content, style)}: one "surface" per piece and per group of patches
+        (``group_of``; content: a tuple of parts), and the outlines as few "lines" actors, one
+        per kind and check status (content: a tuple of lines; style: (colour, width))."""
         if self.scene is None:
             return {}
-        out = {f"piece:{p.name}": ("surface", p, None) for p in self.scene.pieces}
-        out |= {f"patch:{p.id}": ("surface", p, None) for p in self.scene.patches}
+        out = {f"piece:{p.name}": ("surface", (p,), None) for p in self.scene.pieces}
+        chunks: dict = {}
+        for p in self.scene.patches:
+            chunks.setdefault(group_of(p.id), []).append(p)
+        out |= {f"patches:{k}": ("surface", tuple(ps), None) for k, ps in sorted(chunks.items())}
         by_status = dict(zip(("patch", "piece"), colours.status_from_violations(violations)))
         groups: dict = {}
         for ln in self.scene.lines:
@@ -62,23 +74,29 @@ class Scene3D:
         return out
 
 
-def _surface_mesh(pv, part):
-    if hasattr(part, "surface"):
-        points, tris = part.surface.points, part.surface.triangles
-    else:
-        points, tris = part.points, part.triangles
-    if not len(tris):
+def group_of(patch_id: str) -> int:
+    """The surface actor of a patch: fixed by its id, so adding or removing a patch leaves
+    the other groups as they are."""
+    return zlib.crc32(patch_id.encode("utf-8")) % SURFACE_GROUPS
+
+
+def _surface_mesh(pv, parts):
+    meshes = [(p.surface.points, p.surface.triangles) if hasattr(p, "surface")
+              else (p.points, p.triangles) for p in parts]
+    meshes = [m for m in meshes if len(m[1])]
+    if not meshes:
         return pv.PolyData()
+    offsets = np.cumsum([0] + [len(m[0]) for m in meshes[:-1]])
+    points = np.vstack([m[0] for m in meshes])
+    tris = np.vstack([m[1] + o for m, o in zip(meshes, offsets)])
     mesh = pv.PolyData.from_regular_faces(points, tris)
     mesh.point_data[HEIGHT] = points[:, 2].copy()
     return mesh
 
 
-def _same(a, b) -> bool:
-    """The same part, or the same lines (by identity): nothing to resend."""
-    if isinstance(a, tuple) and isinstance(b, tuple):
-        return len(a) == len(b) and all(x is y for x, y in zip(a, b))
-    return a is b
+def _same(a: tuple, b: tuple) -> bool:
+    """The same parts or lines (by identity): nothing to resend."""
+    return len(a) == len(b) and all(x is y for x, y in zip(a, b))
 
 
 class PlotterSync:
