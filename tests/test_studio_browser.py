@@ -1,7 +1,8 @@
 """End to end in a real browser (Debian's chromium through Playwright): the studio on the tennis-
 pocket demo design; add a patch by clicking on the piece, delete it with the Delete key and
-undo, drag it, move the fill slider and see the readout and the 3D view change, run inverse
-design and apply a candidate, drag a patch over the piece edge and see the violation appear and
+undo, drag it, zoom, hold it to see the edge rule, multi-select, move the fill slider and see
+the readout and the 3D view change, run inverse design, apply a candidate and place one where
+the next click lands, drag a patch over the piece edge and see the violation appear and
 clear, save and check the saved file with ``stitchswitch check``, then group into hoopings and
 export a JEF that the tests' own decoder reads back with the expected extent. With
 STUDIO_SCREENSHOTS=DIR the screenshots of docs/studio.md are written to DIR."""
@@ -133,6 +134,16 @@ def test_studio_in_chromium(tmp_path):
             page.wait_for_function(f"!document.querySelector('#readout').innerText.startsWith('h {h1} ')")
             assert readout_h(page) == pytest.approx(12.0, abs=0.25), page.locator("#message").inner_text()
             assert errors(page) == 0
+            # "Place" a candidate where the next click lands: a third patch there, then undo
+            page.locator(".place-candidate").first.click()
+            page.wait_for_function("/click on a piece/.test(document.querySelector('#message').innerText)")
+            page.mouse.click(*to_px(page, view, -100.0, 100.0))
+            page.wait_for_function("document.querySelectorAll('#canvas circle').length == 3")
+            assert readout_h(page) == pytest.approx(12.0, abs=0.25)
+            page.locator("#undo").click()
+            page.wait_for_function("document.querySelectorAll('#canvas circle').length == 2")
+            page.mouse.click(*to_px(page, view, 100.0, 150.0))
+            page.wait_for_function("document.querySelector('#inspector-title').innerText == 'Patch p1'")
             # over the piece edge (the waist): a violation, then undo clears it
             top = float(design.pieces[0].outline_mm[:, 1].max())
             loads = scene_loads(page)

@@ -361,3 +361,19 @@ def test_deferred_autosave(design_file):
     session.autosave_later = False
     session.undo()
     assert Document.open(design_file)[0].recover() == session.state.design
+
+
+def test_inverse_candidate_placed_where_clicked(design_file):
+    doc, design = Document.open(design_file)
+    session = Session(doc, design, default_map())
+    cands = session.run_inverse(InverseTarget(height_mm=12.0, count=2))
+    assert cands and session.state.selected is None
+    c = centre(design)
+    pid = session.apply_candidate(0, (c[0] + 50.0, c[1]))
+    p = session.state.design.patch(pid)
+    assert p.centre_mm == (c[0] + 50.0, c[1]) and session.state.selected == pid
+    assert p.diameter_mm == pytest.approx(cands[0].candidate.diameter_mm, abs=1e-6)
+    with pytest.raises(InvalidInputError, match="candidate 9"):
+        session.apply_candidate(8)
+    session.undo()
+    assert session.state.design.patches == ()

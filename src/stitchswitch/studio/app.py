@@ -7,7 +7,8 @@ piece-edge rule drawn while the button is down; a click on an empty spot of a pi
 patch, a drag from an empty spot pans, the wheel and the toolbar's - / Fit / + zoom; Delete
 removes the selection), the inspector (diameter and fill sliders, state, the live readout,
 the composite core and the conductive triangles), the 3D view (WebGL in the browser, the
-scene of ``scene3d``), the inverse-design panel and the constraint panel. Fabrication Mode:
+scene of ``scene3d``), the inverse-design panel (apply a candidate to the selected patch, or place it
+where the next click lands) and the constraint panel. Fabrication Mode:
 hoop grouping drawn on the canvas, each hooping's stitch plan (a click on it), export of the
 fabrication folder and a download link for each exported file.
 """
@@ -175,6 +176,9 @@ def build_app(session, server=None):
                 session.move(pid, (p.centre_mm[0] + dx, p.centre_mm[1] + dy))
         elif pid is None and moved:
             session.pan(dx, dy)
+        elif pid is None and not shift and state.placing is not None:
+            k, state.placing = state.placing, None
+            session.apply_candidate(k, pt)
         elif pid is None and not shift:
             session.add(pt)
 
@@ -258,9 +262,16 @@ def build_app(session, server=None):
     def on_apply(index):
         guarded(session.apply_candidate)(int(index))
 
+    def on_place(index):
+        """Arm placing: the next click on an empty spot of a piece adds the candidate there."""
+        state.placing = int(index)
+        state.message = "click on a piece to place the candidate (Esc cancels)"
+
     def on_key(key):
         if key in ("Delete", "Backspace") and session.state.selected is not None:
             on_delete()
+        elif key == "Escape" and state.placing is not None:
+            state.placing, state.message = None, ""
 
     def on_delete():
         guarded(session.remove_selection)()
@@ -285,7 +296,7 @@ def build_app(session, server=None):
                   "diameter": 60.0, "fill": 0.5, "patch_state": "up", "readout_stamp": 0,
                   "selection": [], "composite_on": False, "core_d": 20.0, "core_fill": 0.9,
                   "conductive": "", "sizes": session.sizes, "size": session.size,
-                  "plan_k": 0, "plan_svg": "", "plan_counts": {},
+                  "plan_k": 0, "plan_svg": "", "plan_counts": {}, "placing": None,
                   "timings": {}})
 
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
@@ -364,7 +375,9 @@ def build_app(session, server=None):
                               " F {{ c.force_N }} N, {{ c.feasible ? 'passes the check' : "
                               "c.check_errors + ' check errors' }} ")
                     v3.VBtn("Apply", size="x-small", click=(on_apply, "[c.index]"),
-                        classes="apply-candidate")
+                            classes="apply-candidate")
+                    v3.VBtn("Place", size="x-small", click=(on_place, "[c.index]"),
+                            classes="place-candidate")
                 v3.VDivider(classes="my-2")
                 html.H4("Constraints: {{ n_errors }} error(s)", id="check-title")
                 with html.Div(v_for="v in violations", key="v.index", classes="text-body-2 violation",

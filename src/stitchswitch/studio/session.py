@@ -192,8 +192,12 @@ class Session:
         self.candidates = inverse_panel.candidates(target, self.dmap, self.state)
         return self.candidates
 
-    def apply_candidate(self, index: int) -> str:
-        pid = inverse_panel.apply(self.state, self.candidates[index].candidate)
+    def apply_candidate(self, index: int, centre_mm=None) -> str:
+        """Give the selected patch candidate ``index``'s design, or with ``centre_mm`` place a
+        new patch with it there (one undo step either way)."""
+        if not 0 <= index < len(self.candidates):
+            raise InvalidInputError(f"candidate {index + 1}: there are {len(self.candidates)}")
+        pid = inverse_panel.apply(self.state, self.candidates[index].candidate, centre_mm)
         self.after_edit()
         return pid
 
