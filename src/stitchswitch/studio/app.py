@@ -33,6 +33,9 @@ POINTER = ("[$event.clientX - $event.currentTarget.getBoundingClientRect().left,
 WHEEL = POINTER[:-len(", $event.shiftKey]")] + ", $event.deltaY]"
 #: zoom factor per wheel step or button press
 ZOOM_STEP = 1.25
+#: the 3D scene is built this long after the panel: a flush only queues the panel's message,
+#: and the event loop must get to write it before the scene's serialization holds the loop
+SCENE_DELAY_S = 0.05
 READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_b_mm"),
                 ("z_b", "z_b_mm"))
 
@@ -127,7 +130,7 @@ def build_app(session, server=None):
         if shown[0] is shown_last[0] and shown[1] == shown_last[1]:
             return
         if pending["scene"] is None:
-            pending["scene"] = asyncio.get_event_loop().call_later(0.001, push_scene)
+            pending["scene"] = asyncio.get_event_loop().call_later(SCENE_DELAY_S, push_scene)
 
     def push() -> None:
         push_panel()
