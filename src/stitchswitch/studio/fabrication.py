@@ -11,10 +11,15 @@ from __future__ import annotations
 
 import dataclasses
 
+from stitchswitch.layout.embroidery import export as formats
+from stitchswitch.layout.embroidery.machines import catalogue
+from stitchswitch.layout.embroidery.patch_design import geometry_for
+from stitchswitch.layout.embroidery.stitches import StitchParams
 from stitchswitch.layout.fabrication.fabricate import FabricateOptions, fabricate, grouping_hoops
 from stitchswitch.layout.fabrication.grouping.footprints import stretch
 from stitchswitch.layout.fabrication.grouping.group import group
 from stitchswitch.layout.fabrication.order import order_hoopings
+from stitchswitch.layout.fabrication.plan import plan_hooping
 
 
 def hoopings(design, options: FabricateOptions | None = None):
@@ -53,12 +58,6 @@ def hooping_outlines(order, eta: float) -> list:
 def hooping_plan(design, order, k: int, options: FabricateOptions | None = None):
     """The stitch plan (``plan.HoopingPlan``) of hooping ``k`` (0-based) of ``order``, as
     ``fabricate`` plans it for its machine file (same geometry resolution and stitch speed)."""
-    from stitchswitch.layout.embroidery import export as formats
-    from stitchswitch.layout.embroidery.machines import catalogue
-    from stitchswitch.layout.embroidery.patch_design import geometry_for
-    from stitchswitch.layout.embroidery.stitches import StitchParams
-    from stitchswitch.layout.fabrication.plan import plan_hooping
-
     options = options or FabricateOptions()
     machine = catalogue(options.machines_file, formats.supported_formats()).machine(
         options.machine or design.machine.name)

@@ -12,6 +12,7 @@ import time
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.fabrication.fabricate import FabricateOptions
 from stitchswitch.layout.garment.design import CompositeSpec
+from stitchswitch.layout.garment.piece_select import select_pieces
 from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import canvas, fabrication, inverse_panel, live_check, stitch_preview
 from stitchswitch.studio.readout import heights_mm, readout
@@ -125,8 +126,6 @@ class Session:
     def set_size(self, size: str) -> None:
         """Put the design on another size of its pattern (``select_pieces``, as ``import
         --size`` does), one undo step; the view fits the new pieces."""
-        from stitchswitch.layout.garment.piece_select import select_pieces
-
         if self.pattern is None:
             raise InvalidInputError("the design was not started from a graded pattern")
         names = [p.name for p in self.state.design.pieces]

@@ -10,6 +10,7 @@ incremented on every change so that views know when to redraw.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import shapely
@@ -193,8 +194,6 @@ class StudioState:
         if lost:
             raise InvalidInputError(f"patch {lost[0].id} is on piece {lost[0].piece!r}, which "
                                     "the new pieces do not have (" + ", ".join(sorted(names)) + ")")
-        import dataclasses
-
         self._commit(dataclasses.replace(self.design, pieces=tuple(pieces)), self.selected,
                      also=self.also_selected)
 
