@@ -4,8 +4,10 @@ move a patch -> check panel updated, p95 <= 150 ms; first load to an interactive
 
 Measured from the browser (Debian's chromium driven by Playwright, tests/studio_driver.py):
 
-* ``first_load``: ``page.goto`` until the canvas shows the 40 patches (server already running;
-  the server's own start, map load and first scene, is reported as ``server_start``);
+* ``first_load``: ``page.goto`` in a running browser until the canvas shows the 40 patches
+  (the page is interactive: its handlers are bound and the state has arrived; the server is
+  already running, its own start (imports, map load, first check and scene) is reported as
+  ``server_start``); ``first_scene``: until the 3D view has its first scene as well;
 * ``slider_readout``: one step of the fill slider until the page shows the new readout (sent
   before the check and the scene are recomputed);
 * ``slider``: one step of the fill slider (a key press on its thumb) until the page has both
@@ -13,8 +15,18 @@ Measured from the browser (Debian's chromium driven by Playwright, tests/studio_
   data, so it arrives after it on the same websocket), with the server's share of it:
   ``check``, ``scene`` (``preview3d.scene.build_scene`` of the whole design) and ``view_send``
   (serializing the VTK scene for the browser);
+* ``slider_check``: the same step until the check panel shows the new check;
 * ``move``: a drag of a patch by 4 mm until the check panel shows the new check (the edit
-  counter the server sends with it), alternating back and forth.
+  counter the server sends with it), alternating back and forth; ``move_3d``: until the 3D
+  view has the moved patch.
+
+The 3D view counts as updated when its ``afterSceneLoaded`` event (vtk.js has synchronized the
+scene and fetched the new arrays) has fired for the edit. The server's share: ``check``
+(incremental, ``studio.live_check.LiveCheck``), ``scene`` (``preview3d.scene.SceneBuilder``:
+only the changed parts are rebuilt), ``sync`` (the pyvista actors of the changed parts),
+``view_send`` (trame-vtk serializing the scene state and the new arrays' checksums), each as
+wall time and, with the suffix ``cpu``, as the server process's CPU time; ``browser task``:
+the page's main-thread task time over the whole step (``BrowserTime``), the browser's share.
 
 The machine is shared: the 1-minute load average is printed with the figures.
 
@@ -36,7 +48,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests"))
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "src"))
 
 from bench_preview import design_40  # noqa: E402
-from studio_driver import browser_page, studio_server, to_px  # noqa: E402
+from studio_driver import browser, studio_server, to_px  # noqa: E402
 
 TARGETS = {"slider": 0.100, "move": 0.150, "first_load": 3.0}
 
@@ -48,6 +60,34 @@ def _stamp(page, sel: str) -> int:
 def _wait_stamp(page, sel: str, above: int) -> None:
     page.wait_for_function(f"Number(document.querySelector('{sel}').innerText) > {above}",
                            polling="raf", timeout=30000)
+
+
+def _loads(page) -> int:
+    return int(page.evaluate("window.studioSceneLoads || 0"))
+
+
+def _wait_scene(page, above: int, loads: int) -> None:
+    """Until the 3D view shows edit ``above + 1`` or later: the server has sent its scene (the
+    scene stamp follows the view's data on the websocket), and the view has synchronized since
+    ``loads`` and is not synchronizing any more (vtk.js's afterSceneLoaded: arrays fetched)."""
+    page.wait_for_function(
+        f"Number(document.querySelector('#scene-stamp').innerText) > {above} && "
+        f"(window.studioSceneLoads || 0) > {loads} && !window.studioSceneBusy",
+        polling="raf", timeout=30000)
+
+
+class BrowserTime:
+    """The page's main-thread task time (Chrome DevTools ``Performance.getMetrics``
+    ``TaskDuration``, seconds): the browser's own work, much less sensitive to the machine's
+    load than wall time."""
+
+    def __init__(self, page):
+        self.cdp = page.context.new_cdp_session(page)
+        self.cdp.send("Performance.enable")
+
+    def __call__(self) -> float:
+        metrics = self.cdp.send("Performance.getMetrics")["metrics"]
+        return next(m["value"] for m in metrics if m["name"] == "TaskDuration")
 
 
 def measure(runs: int) -> dict:
@@ -62,41 +102,63 @@ def measure(runs: int) -> dict:
         t0 = time.perf_counter()
         with studio_server(path) as (url, _):
             server_start = time.perf_counter() - t0
-            t1 = time.perf_counter()
-            with browser_page(url) as page:
-                page.wait_for_function("document.querySelectorAll('#canvas circle').length == 40")
+            with browser() as ctx:
+                page = ctx.new_page()
+                t1 = time.perf_counter()
+                page.goto(url)
+                page.wait_for_function("document.querySelectorAll('#canvas circle').length == 40",
+                                       polling="raf", timeout=60000)
                 first_load = time.perf_counter() - t1
+                _wait_scene(page, -1, 0)
+                first_scene = time.perf_counter() - t1
                 p = design.patches[0]
                 page.mouse.click(*to_px(page, view, *p.centre_mm))
                 page.wait_for_selector("#slider-fill .v-slider-thumb")
                 thumb = page.locator("#slider-fill .v-slider-thumb")
                 thumb.focus()
-                slider, readout, server = [], [], []
+                task = BrowserTime(page)
+                slider, readout, check, server, slider_task, move_task = [], [], [], [], [], []
                 for k in range(runs):
-                    before = _stamp(page, "#scene-stamp")
+                    before, loads = _stamp(page, "#edits"), _loads(page)
+                    b0 = task()
                     t = time.perf_counter()
                     page.keyboard.press("ArrowLeft" if k % 2 else "ArrowRight")
                     _wait_stamp(page, "#readout-stamp", before)
                     readout.append(time.perf_counter() - t)
-                    _wait_stamp(page, "#scene-stamp", before)
+                    _wait_stamp(page, "#edits", before)
+                    check.append(time.perf_counter() - t)
+                    _wait_scene(page, before, loads)
                     slider.append(time.perf_counter() - t)
+                    slider_task.append(task() - b0)
                     server.append(json.loads(page.locator("#timings").inner_text()))
-                move = []
+                move, move_3d = [], []
                 x, y = p.centre_mm
                 for k in range(runs):
                     dx = 4.0 if k % 2 == 0 else -4.0
-                    before = _stamp(page, "#edits")
+                    before, loads = _stamp(page, "#edits"), _loads(page)
                     page.mouse.move(*to_px(page, view, x, y))
                     page.mouse.down()
                     page.mouse.move(*to_px(page, view, x + dx, y), steps=2)
+                    b0 = task()
                     t = time.perf_counter()
                     page.mouse.up()
                     _wait_stamp(page, "#edits", before)
                     move.append(time.perf_counter() - t)
+                    _wait_scene(page, before, loads)
+                    move_3d.append(time.perf_counter() - t)
+                    move_task.append(task() - b0)
+                    server.append(json.loads(page.locator("#timings").inner_text()))
                     x += dx
-    phases = {f"  server {k[:-2]}": [row[k] / 1000.0 for row in server] for k in server[0]}
-    return {"server_start": [server_start], "first_load": [first_load], "slider_readout": readout,
-            "slider": slider, **phases, "move": move}
+    slider_rows, move_rows = server[:runs], server[runs:]
+    phases = {f"  server {k[:-2]}": [row[k] / 1000.0 for row in slider_rows]
+              for k in slider_rows[0] if k.endswith("_s")}
+    move_phases = {f"  server {k[:-2]}": [row[k] / 1000.0 for row in move_rows]
+                   for k in move_rows[0] if k.endswith("_s")}
+    return {"server_start": [server_start], "first_load": [first_load],
+            "first_scene": [first_scene], "slider_readout": readout,
+            "slider_check": check, "slider": slider, "  browser task (slider)": slider_task,
+            **phases, "move": move, "move_3d": move_3d, "  browser task (move)": move_task,
+            **{k + " (move)": v for k, v in move_phases.items()}}
 
 
 def summary(samples: dict) -> list[dict]:
@@ -121,10 +183,10 @@ def main(argv=None) -> int:
     if args.json:
         print(json.dumps({"rows": rows, "loadavg_1min": load}, indent=2))
         return 0
-    print(f"{'step':<18}{'runs':>5}{'median ms':>11}{'p95 ms':>9}{'target ms':>11}  meets")
+    print(f"{'step':<30}{'runs':>5}{'median ms':>11}{'p95 ms':>9}{'target ms':>11}  meets")
     for r in rows:
         tgt = "" if r["target_s"] is None else f"{1000 * r['target_s']:.0f}"
-        print(f"{r['step']:<18}{r['runs']:>5}{1000 * r['median_s']:>11.0f}{1000 * r['p95_s']:>9.0f}"
+        print(f"{r['step']:<30}{r['runs']:>5}{1000 * r['median_s']:>11.0f}{1000 * r['p95_s']:>9.0f}"
               f"{tgt:>11}  {'' if r['meets'] is None else ('yes' if r['meets'] else 'NO')}")
     print(f"load average (1 min): {load:.2f}")
     return 0

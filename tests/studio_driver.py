@@ -64,7 +64,8 @@ def studio_server(design_path, timeout_s: float = 60.0):
 
 
 @contextlib.contextmanager
-def browser_page(url, size=(1400, 850)):
+def browser(size=(1400, 850)):
+    """A fresh headless Chromium (its own temporary profile): the browser context."""
     from playwright.sync_api import sync_playwright
 
     profile = tempfile.mkdtemp(prefix="studio-chromium-")
@@ -74,14 +75,21 @@ def browser_page(url, size=(1400, 850)):
                                                        headless=True,
                                                        viewport={"width": size[0], "height": size[1]})
             try:
-                page = ctx.new_page()
-                page.goto(url)
-                page.wait_for_selector("#canvas svg circle, #canvas svg polygon", timeout=30000)
-                yield page
+                yield ctx
             finally:
                 ctx.close()
     finally:
         shutil.rmtree(profile, ignore_errors=True)
+
+
+@contextlib.contextmanager
+def browser_page(url, size=(1400, 850)):
+    """A page of a fresh browser on ``url``, once the canvas shows the pieces."""
+    with browser(size) as ctx:
+        page = ctx.new_page()
+        page.goto(url)
+        page.wait_for_selector("#canvas svg circle, #canvas svg polygon", timeout=30000)
+        yield page
 
 
 def to_px(page, view, x_mm: float, y_mm: float) -> tuple[float, float]:

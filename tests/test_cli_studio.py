@@ -45,3 +45,12 @@ def test_bad_design_file(tmp_path):
     bad.write_text('{"version": 1, "pieces": [], "patches": [{"id": 3}]}')
     one_error(run(str(bad), "--no-browser"), "bad.json")
     assert not (tmp_path / "bad.json.autosave.json").exists()
+
+
+def test_size_needs_a_pattern(tmp_path):
+    one_error(run("--rectangle", "300x200", "--size", "36", "-o", str(tmp_path / "n.json"),
+                  "--no-browser"), "--size")
+    path = tmp_path / "d.json"
+    save_design(Design(1, (rectangle_piece(300.0, 200.0),), ()), path)
+    one_error(run(str(path), "--size", "36", "--no-browser"), "--size")
+    assert not (tmp_path / "n.json").exists()

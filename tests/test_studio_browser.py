@@ -1,7 +1,8 @@
 """End to end in a real browser (Debian's chromium through Playwright): the studio on the tennis-
 pocket demo design; add a patch by clicking on the piece, delete it with the Delete key and
-undo, drag it, move the fill slider and see the readout and the 3D view change, run inverse
-design and apply a candidate, drag a patch over the piece edge and see the violation appear and
+undo, drag it, zoom, hold it to see the edge rule, multi-select, move the fill slider and see
+the readout and the 3D view change, run inverse design, apply a candidate and place one where
+the next click lands, drag a patch over the piece edge and see the violation appear and
 clear, save and check the saved file with ``stitchswitch check``, then group into hoopings and
 export a JEF that the tests' own decoder reads back with the expected extent. With
 STUDIO_SCREENSHOTS=DIR the screenshots of docs/studio.md are written to DIR."""
@@ -43,6 +44,16 @@ def readout_h(page) -> float:
     return float(re.match(r"h (-?[\d.]+) mm", page.locator("#readout").inner_text()).group(1))
 
 
+def scene_loads(page) -> int:
+    return int(page.evaluate("window.studioSceneLoads || 0"))
+
+
+def wait_scene(page, loads: int) -> None:
+    """Until the 3D view has loaded a newer scene than the one counted in ``loads``."""
+    page.wait_for_function(f"(window.studioSceneLoads || 0) > {loads} && !window.studioSceneBusy",
+                           timeout=60000)
+
+
 def errors(page) -> int:
     return int(re.search(r"Constraints: (\d+) error", page.locator("#check-title").inner_text()).group(1))
 
@@ -72,14 +83,42 @@ def test_studio_in_chromium(tmp_path):
             drag(page, to_px(page, view, 60.0, 150.0), to_px(page, view, 100.0, 150.0))
             page.wait_for_function("Number(document.querySelector('#canvas circle[data-patch=p1]')"
                                    ".getAttribute('cx')) > 90")
+            # zoom in on the canvas and back (toolbar), the rulers follow
+            box0 = page.locator("#canvas svg").get_attribute("viewBox")
+            page.locator("#zoom-in").click()
+            page.wait_for_function(f"document.querySelector('#canvas svg').getAttribute('viewBox') != '{box0}'")
+            assert float(page.locator("#canvas svg").get_attribute("viewBox").split()[2]) < float(box0.split()[2])
+            assert page.locator("#canvas [data-ruler-x]").count() > 2
+            page.locator("#fit-view").click()
+            page.wait_for_function(f"document.querySelector('#canvas svg').getAttribute('viewBox') == '{box0}'")
+            # holding the patch draws the piece-edge rule; releasing in place changes nothing
+            page.mouse.move(*to_px(page, view, 100.0, 150.0))
+            page.mouse.down()
+            page.wait_for_selector("#canvas [data-guide=centre]")
+            page.mouse.up()
+            page.wait_for_function("!document.querySelector('#canvas [data-guide]')")
+            # Shift+click adds the pocket to the selection, Shift+click again takes it out
+            pocket = design.patches[0]
+            page.keyboard.down("Shift")
+            page.mouse.click(*to_px(page, view, *pocket.centre_mm))
+            page.keyboard.up("Shift")
+            page.wait_for_selector("#multi")
+            page.keyboard.down("Shift")
+            page.mouse.click(*to_px(page, view, *pocket.centre_mm))
+            page.keyboard.up("Shift")
+            page.wait_for_function("!document.querySelector('#multi')")
+            page.mouse.click(*to_px(page, view, 100.0, 150.0))
+            page.wait_for_function("document.querySelector('#inspector-title').innerText == 'Patch p1'")
             # the fill slider: the readout and the 3D view change
             h0 = readout_h(page)
             before = page.locator("#view3d").screenshot()
+            loads = scene_loads(page)
             thumb = page.locator("#slider-fill .v-slider-thumb")
             thumb.focus()
             for _ in range(30):
                 page.keyboard.press("ArrowRight")
             page.wait_for_function(f"!document.querySelector('#readout').innerText.startsWith('h {h0} ')")
+            wait_scene(page, loads)
             page.wait_for_timeout(500)
             assert readout_h(page) != h0
             assert page.locator("#view3d").screenshot() != before
@@ -95,11 +134,23 @@ def test_studio_in_chromium(tmp_path):
             page.wait_for_function(f"!document.querySelector('#readout').innerText.startsWith('h {h1} ')")
             assert readout_h(page) == pytest.approx(12.0, abs=0.25), page.locator("#message").inner_text()
             assert errors(page) == 0
+            # "Place" a candidate where the next click lands: a third patch there, then undo
+            page.locator(".place-candidate").first.click()
+            page.wait_for_function("/click on a piece/.test(document.querySelector('#message').innerText)")
+            page.mouse.click(*to_px(page, view, -100.0, 100.0))
+            page.wait_for_function("document.querySelectorAll('#canvas circle').length == 3")
+            assert readout_h(page) == pytest.approx(12.0, abs=0.25)
+            page.locator("#undo").click()
+            page.wait_for_function("document.querySelectorAll('#canvas circle').length == 2")
+            page.mouse.click(*to_px(page, view, 100.0, 150.0))
+            page.wait_for_function("document.querySelector('#inspector-title').innerText == 'Patch p1'")
             # over the piece edge (the waist): a violation, then undo clears it
             top = float(design.pieces[0].outline_mm[:, 1].max())
+            loads = scene_loads(page)
             drag(page, to_px(page, view, 100.0, 150.0), to_px(page, view, 100.0, top - 5.0))
             page.wait_for_function("/Constraints: [1-9]/.test(document.querySelector('#check-title').innerText)")
             assert page.locator(".violation").count() >= 1
+            wait_scene(page, loads)                    # the 3D view draws it flagged too
             shot(page, tmp_path, "violation")
             page.locator("#undo").click()
             page.wait_for_function("/Constraints: 0 /.test(document.querySelector('#check-title').innerText)")
@@ -119,9 +170,20 @@ def test_studio_in_chromium(tmp_path):
             page.locator("#export-dir input").fill(str(out))
             page.locator("#export").click()
             page.locator(".exported").first.wait_for(timeout=120000)
+            # the first hooping's stitch plan, and a download of its machine file from the page
+            page.locator(".hooping").first.click()
+            page.wait_for_selector("#plan-svg polyline", timeout=60000)
+            assert int(re.search(r"(\d+) stitches", page.locator("#plan-counts").inner_text()).group(1)) > 100
             shot(page, tmp_path, "fabrication")
+            link = page.locator(".download", has_text=re.compile(r"hoop0?1\.jef"))
+            with page.expect_download() as dl:
+                link.click()
+            downloaded = tmp_path / "downloaded.jef"
+            dl.value.save_as(downloaded)
     assert log[-1] == "exit code 0\n"            # Ctrl-C (SIGINT) stopped it cleanly
     sheet = json.loads((out / "fabrication.json").read_text())
+    first = sheet["hoopings"][0]["files"]["embroidery"]
+    assert downloaded.read_bytes() == (out / first).read_bytes()
     assert sorted(p["id"] for h in sheet["hoopings"] for p in h["patches"]) == ["p1", "pocket1"]
     for h in sheet["hoopings"]:
         # the stitches span the hooping's patches: centres in hoop mm +- d / 2 (0.1 mm units)

@@ -19,6 +19,7 @@ from stitchswitch.studio import fabrication, inverse_panel, live_check
 from stitchswitch.studio.persist import Document, sidecar_path
 from stitchswitch.studio.profile_plot import profile_svg
 from stitchswitch.studio.readout import heights_mm, readout
+from stitchswitch.studio.session import Session
 from stitchswitch.studio.state import StudioState
 
 from decoders import jef
@@ -180,3 +181,199 @@ def test_grouping_and_export(tmp_path, design_file):
         xy = np.array([(x, y) for kind, x, y in decoded.records if kind == "stitch"]) / 10.0
         expected = np.ptp(np.array(h.positions_mm), axis=0) + 50.0     # centres' span + d
         assert np.ptp(xy, axis=0) == pytest.approx(expected, abs=2.0)
+
+
+def test_grouping_uses_fabricates_hoop_choice(design_file):
+    from stitchswitch.layout.fabrication.fabricate import FabricateOptions, grouping_hoops
+
+    doc, design = Document.open(design_file)
+    s = StudioState(design)
+    c = centre(design)
+    s.add_patch((c[0] - 40, c[1]), diameter_mm=50.0)
+    s.add_patch((c[0] + 40, c[1]), diameter_mm=50.0)
+    every = {h.name for h in grouping_hoops(s.design)}
+    assert len(every) > 1
+    one = FabricateOptions(hoop="SQ20b")
+    assert [h.name for h in grouping_hoops(s.design, one)] == ["SQ20b"]
+    _, order = fabrication.hoopings(s.design, one)
+    assert {h.hoop.name for h in order.hoopings} == {"SQ20b"}
+    _, order = fabrication.hoopings(s.design)
+    assert {h.hoop.name for h in order.hoopings} <= every
+
+
+def test_multi_select_moves_and_removes_together(empty):
+    s = StudioState(empty)
+    c = centre(empty)
+    a = s.add_patch((c[0] - 60, c[1]))
+    b = s.add_patch((c[0] + 60, c[1]))
+    d = s.add_patch((c[0], c[1] + 80))
+    s.select(a)
+    s.toggle_select(b)
+    assert s.selection == (a, b) and s.selected == b          # the inspector shows the last
+    s.move_patches(s.selection, 10.0, -5.0)
+    assert s.design.patch(a).centre_mm == (c[0] - 50, c[1] - 5)
+    assert s.design.patch(b).centre_mm == (c[0] + 70, c[1] - 5)
+    assert s.design.patch(d).centre_mm == (c[0], c[1] + 80)
+    s.undo()                                                   # one step for both
+    assert s.design.patch(a).centre_mm == (c[0] - 60, c[1]) and s.selection == (a, b)
+    s.toggle_select(a)
+    assert s.selection == (b,)
+    s.toggle_select(d)
+    s.remove_patches(s.selection)
+    assert [p.id for p in s.design.patches] == [a] and s.selection == ()
+    s.undo()
+    assert len(s.design.patches) == 3 and s.selection == (b, d)
+    s.select(a)
+    assert s.selection == (a,)
+
+
+def test_composite_and_conductive_options(tmp_path, design_file):
+    doc, design = Document.open(design_file)
+    session = Session(doc, design, default_map())
+    pid = session.add(centre(design))
+    session.set_composite(20.0, 0.9)
+    p = session.state.design.patch(pid)
+    assert p.composite.core_diameter_mm == 20.0 and p.composite.core_fill == 0.9
+    session.set_conductive("ring:0")
+    assert session.state.design.patch(pid).conductive == "ring:0"
+    with pytest.raises(InvalidInputError, match="selection"):
+        session.set_conductive("spiral:3")
+    with pytest.raises(InvalidInputError, match="core_diameter_mm"):
+        session.set_composite(200.0, 0.9)                      # larger than the patch
+    assert session.state.design.patch(pid).composite.core_diameter_mm == 20.0
+    session.save()
+    saved = load_design(design_file).patch(pid)
+    assert saved.composite == p.composite and saved.conductive == "ring:0"
+    session.set_composite(None)
+    session.set_conductive("")
+    p = session.state.design.patch(pid)
+    assert p.composite is None and p.conductive is None
+    session.undo()
+    assert session.state.design.patch(pid).conductive == "ring:0"
+
+
+def test_canvas_zoom_pan_rulers_and_drag_guides(design_file):
+    from stitchswitch.studio import canvas
+
+    doc, design = Document.open(design_file)
+    session = Session(doc, design, default_map())
+    fit = session.view()
+    w_px, h_px = 800.0, 600.0
+    about = canvas.to_mm(fit, 300.0, 200.0, w_px, h_px)
+    session.zoom(2.0, about)
+    v = session.view()
+    assert v.width == pytest.approx(fit.width / 2)
+    assert canvas.to_mm(v, 300.0, 200.0, w_px, h_px) == pytest.approx(about)   # stays put
+    for _ in range(40):
+        session.zoom(2.0)
+    assert session.view().width == pytest.approx(fit.width * canvas.ZOOM_RANGE[0])
+    session.fit_view()
+    session.pan(30.0, -20.0)
+    v = session.view()
+    x, y = canvas.to_mm(fit, 300.0, 200.0, w_px, h_px)
+    assert canvas.to_mm(v, 300.0, 200.0, w_px, h_px) == pytest.approx((x - 30.0, y + 20.0))
+    svg = session.canvas_svg()
+    assert f'viewBox="{v.x0:.2f} {v.y0:.2f}' in svg
+    xs = [float(t) for t in re.findall(r'data-ruler-x="([-\d.]+)"', svg)]
+    assert xs and np.allclose(np.diff(xs), 50.0)             # a 50 mm ruler step on 400 mm
+    ys = [float(t) for t in re.findall(r'data-ruler-y="([-\d.]+)"', svg)]
+    assert ys and 0.0 in ys and 300.0 in ys
+    pid = session.add(centre(design))
+    assert "data-guide" not in session.canvas_svg()
+    session.dragging = (pid,)
+    svg = session.canvas_svg()
+    ring = np.array([[float(c) for c in pt.split(",")] for pt in re.search(
+        r'points="([^"]+)"[^>]*data-guide="centre"', svg).group(1).split()])
+    eta = design.material_object().eta
+    inset = 10.0 + 5.0 + 60.0 / (2 * eta)                      # seam + clearance + radius
+    assert ring[:, 0].min() == pytest.approx(inset, abs=0.05)
+    assert -ring[:, 1].max() == pytest.approx(inset, abs=0.05)  # y negated in the SVG
+    assert 'data-guide="seam"' in svg
+
+
+def test_stitch_plan_preview_and_downloads(tmp_path, design_file):
+    doc, design = Document.open(design_file)
+    session = Session(doc, design, default_map())
+    c = centre(design)
+    session.add((c[0] - 40, c[1]))
+    session.add((c[0] + 40, c[1]))
+    with pytest.raises(InvalidInputError, match="group"):
+        session.plan_preview(0)
+    session.group("garment")
+    svg, n = session.plan_preview(0)
+    runs = [np.array([[float(v) for v in pt.split(",")] for pt in m.split()])
+            for m in re.findall(r'<polyline data-run="\d+" points="([^"]+)"', svg)]
+    assert runs and n["stitches"] > 100 and n["minutes"] > 0
+    shown = np.vstack(runs) * [1.0, -1.0]                       # back to hoop mm, y up
+    with pytest.raises(InvalidInputError, match="hooping 9"):
+        session.plan_preview(8)
+    session.save()
+    result = session.export(tmp_path / "out")
+    first = result.doc.as_dict()["hoopings"][0]                # stitched first
+    jef_bytes = session.exported_file(first["files"]["embroidery"])
+    assert jef_bytes == (tmp_path / "out" / first["files"]["embroidery"]).read_bytes()
+    xy = np.array([(x, y) for kind, x, y in jef.decode(jef_bytes).records if kind == "stitch"]) / 10.0
+    # the preview is the machine file's plan: the same stitch extent (0.1 mm units in the file)
+    assert np.ptp(shown, axis=0) == pytest.approx(np.ptp(xy, axis=0), abs=0.3)
+    with pytest.raises(InvalidInputError, match="not a file of the last export"):
+        session.exported_file("../d.json")
+
+
+def test_size_picker_puts_the_design_on_another_size(tmp_path):
+    from pathlib import Path
+
+    from stitchswitch.layout.garment.dxf.reader import import_dxf
+    from stitchswitch.layout.garment.piece_select import select_pieces
+
+    tank = Path(__file__).parent / "data/external/dxf/WM_LOOSE_SHAPE_TANK_AAMA.DXF"
+    pattern = import_dxf(tank)
+    start = Design(1, select_pieces(pattern, "26"), (), MaterialRef("default"), MachineSpec(),
+                   path=str(tmp_path / "tank.json"))
+    session = Session(Document(start.path, start), start, default_map(), pattern=pattern)
+    assert session.sizes[:2] == ["26", "28"] and len(session.sizes) == 14 and session.size == "26"
+    front = session.state.design.pieces[0]
+    pid = session.add(tuple(front.outline_mm.mean(axis=0)))
+    where = session.state.design.patch(pid).centre_mm
+    session.set_size("36")
+    d = session.state.design
+    assert session.size == "36" and [p.name for p in d.pieces] == [p.name for p in start.pieces]
+    assert np.allclose(d.pieces[0].outline_mm, select_pieces(pattern, "36")[0].outline_mm, atol=1e-6)
+    assert d.patch(pid).centre_mm == where                     # the patch stays where it was
+    assert [repr(v) for v in session.violations] == [repr(v) for v in check_design(d)]
+    session.undo()
+    assert session.size == "26" and len(session.state.design.patches) == 1
+    with pytest.raises(InvalidInputError, match="XL"):
+        session.set_size("XL")
+    bare = Session(Document(start.path, start), start, default_map())
+    assert bare.sizes == []
+    with pytest.raises(InvalidInputError, match="graded pattern"):
+        bare.set_size("36")
+
+
+def test_deferred_autosave(design_file):
+    doc, design = Document.open(design_file)
+    session = Session(doc, design, default_map())
+    session.autosave_later = True
+    session.add(centre(design))
+    assert not os.path.exists(sidecar_path(design_file))      # left to the page, right after
+    session.write_autosave()
+    assert Document.open(design_file)[0].recover() == session.state.design
+    session.autosave_later = False
+    session.undo()
+    assert Document.open(design_file)[0].recover() == session.state.design
+
+
+def test_inverse_candidate_placed_where_clicked(design_file):
+    doc, design = Document.open(design_file)
+    session = Session(doc, design, default_map())
+    cands = session.run_inverse(InverseTarget(height_mm=12.0, count=2))
+    assert cands and session.state.selected is None
+    c = centre(design)
+    pid = session.apply_candidate(0, (c[0] + 50.0, c[1]))
+    p = session.state.design.patch(pid)
+    assert p.centre_mm == (c[0] + 50.0, c[1]) and session.state.selected == pid
+    assert p.diameter_mm == pytest.approx(cands[0].candidate.diameter_mm, abs=1e-6)
+    with pytest.raises(InvalidInputError, match="candidate 9"):
+        session.apply_candidate(8)
+    session.undo()
+    assert session.state.design.patches == ()

@@ -12,10 +12,11 @@ from stitchswitch.errors import InvalidInputError
 log = logging.getLogger("stitchswitch")
 
 
-def _source(source, rectangle, output):
-    """(Document, Design) to edit: a design file, or a new design from a pattern or rectangle
-    saved to ``output``."""
-    from stitchswitch.cli.design.import_cmd import _rectangle
+def _source(source, rectangle, output, size=None):
+    """(Document, Design, pattern) to edit: a design file, or a new design from a pattern (of
+    ``size``, default its first; ``pattern`` is then every piece of it, for the size picker) or
+    a rectangle, saved to ``output``."""
+    from stitchswitch.cli.design.import_cmd import parse_rectangle
     from stitchswitch.layout.garment.design import VERSION, Design
     from stitchswitch.layout.garment.piece_select import rectangle_piece, select_pieces
     from stitchswitch.studio.persist import Document
@@ -25,20 +26,27 @@ def _source(source, rectangle, output):
     if source is not None and not source.lower().endswith(".dxf"):
         if output is not None and os.path.abspath(output) != os.path.abspath(source):
             raise InvalidInputError(f"--output {output!r}: a design file is saved to itself ({source!r})")
-        return Document.open(source)
+        if size is not None:
+            raise InvalidInputError("--size: only a pattern (PATTERN.dxf) has sizes")
+        return (*Document.open(source), None)
     if output is None:
         raise InvalidInputError("--output DESIGN.json is needed to save a design started from "
                                 + (f"the pattern {source!r}" if source else "--rectangle"))
     if os.path.exists(output):
         raise InvalidInputError(f"--output {output!r} exists; open it as DESIGN.json instead")
+    pattern = None
     if rectangle is not None:
-        pieces = (rectangle_piece(*_rectangle(rectangle)),)
+        if size is not None:
+            raise InvalidInputError("--size: only a pattern (PATTERN.dxf) has sizes")
+        pieces = (rectangle_piece(*parse_rectangle(rectangle)),)
     else:
         from stitchswitch.layout.garment.dxf.reader import import_dxf
 
-        pieces = select_pieces(import_dxf(source))
+        pattern = import_dxf(source)
+        first = next(iter(dict.fromkeys(p.size for p in pattern)), None)
+        pieces = select_pieces(pattern, size if size is not None else first)
     design = Design(VERSION, pieces, (), path=output)
-    return Document(output, design), design
+    return Document(output, design), design, pattern
 
 
 @click.command(cls=options.Command)
@@ -50,9 +58,12 @@ def _source(source, rectangle, output):
               help="Local port of the web page, in [1, 65535].")
 @click.option("--host", default="127.0.0.1", show_default=True, metavar="ADDRESS",
               help="Address to bind (anything but 127.0.0.1 exposes the studio to the network).")
+@click.option("--size", default=None, metavar="SIZE",
+              help="The size of a graded PATTERN.dxf to start from (default: its first; the "
+                   "page switches sizes).")
 @click.option("--no-browser", is_flag=True, help="Do not open a browser.")
 @click.option("--recover", is_flag=True, help="Open the autosaved edits of DESIGN.json instead of the file.")
-def studio(source, rectangle, output, port, host, no_browser, recover):
+def studio(source, rectangle, output, port, host, size, no_browser, recover):
     """Edit a design in the browser: place and tune patches with a live readout and 3D view,
     inverse design, the constraint check, hoop grouping and export. Ctrl-C stops it."""
     try:
@@ -63,7 +74,7 @@ def studio(source, rectangle, output, port, host, no_browser, recover):
     from stitchswitch.studio.scene3d import Scene3D
     from stitchswitch.studio.session import Session
 
-    document, design = _source(source, rectangle, output)
+    document, design, pattern = _source(source, rectangle, output, size)
     recovered = document.recover()
     if recovered is not None and recover:
         design = recovered
@@ -71,7 +82,7 @@ def studio(source, rectangle, output, port, host, no_browser, recover):
         log.warning(f"{document.path}: autosaved edits exist; --recover opens them")
     if host != "127.0.0.1":
         log.warning(f"--host {host}: the studio is reachable from the network")
-    session = Session(document, design, default_map(), Scene3D())
+    session = Session(document, design, default_map(), Scene3D(), pattern)
     click.echo(f"stitchswitch studio: http://{host}:{port}/ (Ctrl-C stops it)")
     serve(session, port=port, host=host, open_browser=not no_browser)
     click.echo("stitchswitch studio: stopped")

@@ -7,7 +7,8 @@
 * ``surfaces``: one patch's profile blended into the flat fabric, revolved and placed on the
   garment, popped up or down.
 * ``fabric``: the flat pieces with the patch footprints cut out, triangulated.
-* ``scene``: all of it, plus the outlines as lines; merged into one mesh for export.
+* ``scene``: all of it, plus the outlines as lines; merged into one mesh for export;
+  ``SceneBuilder`` rebuilds only the parts an edit changed (the studio's 3D view).
 * ``camera``, ``render``: offscreen pyvista rendering to PNG (pyvista is imported only there),
   framed on the patches (or a piece, or a patch), lit to show relief, heights optionally
   exaggerated.

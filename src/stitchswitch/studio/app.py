@@ -1,12 +1,16 @@
 """The studio's web page (trame, Vue 3 with Vuetify 3, VTK local view): binds the widgets to a
 ``Session`` and serves it.
 
-Design Mode: the canvas (SVG from ``canvas``; a press on a patch selects it, releasing
-elsewhere moves it, a click on an empty spot of a piece adds a patch, Delete removes the
-selected patch), the inspector
-(diameter and fill sliders, state, the live readout), the 3D view (WebGL in the browser, the
-scene of ``scene3d``), the inverse-design panel and the constraint panel. Fabrication Mode:
-hoop grouping drawn on the canvas, and export of the fabrication folder.
+Design Mode: the canvas (SVG from ``canvas``; a press on a patch selects it, Shift+press adds
+it to the selection or takes it out, releasing elsewhere moves the selection, with the
+piece-edge rule drawn while the button is down; a click on an empty spot of a piece adds a
+patch, a drag from an empty spot pans, the wheel and the toolbar's - / Fit / + zoom; Delete
+removes the selection), the inspector (diameter and fill sliders, state, the live readout,
+the composite core and the conductive triangles), the 3D view (WebGL in the browser, the
+scene of ``scene3d``), the inverse-design panel (apply a candidate to the selected patch, or place it
+where the next click lands) and the constraint panel. Fabrication Mode:
+hoop grouping drawn on the canvas, each hooping's stitch plan (a click on it), export of the
+fabrication folder and a download link for each exported file.
 """
 from __future__ import annotations
 
@@ -15,19 +19,28 @@ import os
 import time
 
 from stitchswitch.errors import InvalidInputError, StitchSwitchError
+from stitchswitch.preview3d import colours
 from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import canvas, live_check
 from stitchswitch.studio.profile_plot import profile_svg
+from stitchswitch.studio.scene3d import PlotterSync
 
-#: the pointer expression passed to the canvas handlers: position on the SVG and its size, px
+#: the pointer expression passed to the canvas handlers: position on the SVG and its size, px,
+#: then the Shift key
 POINTER = ("[$event.clientX - $event.currentTarget.getBoundingClientRect().left, "
            "$event.clientY - $event.currentTarget.getBoundingClientRect().top, "
-           "$event.currentTarget.clientWidth, $event.currentTarget.clientHeight]")
+           "$event.currentTarget.clientWidth, $event.currentTarget.clientHeight, $event.shiftKey]")
+WHEEL = POINTER[:-len(", $event.shiftKey]")] + ", $event.deltaY]"
+#: zoom factor per wheel step or button press
+ZOOM_STEP = 1.25
+#: the 3D scene is built this long after the panel: a flush only queues the panel's message,
+#: and the event loop must get to write it before the scene's serialization holds the loop
+SCENE_DELAY_S = 0.05
 READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_b_mm"),
                 ("z_b", "z_b_mm"))
 
 
-def _plotter(scene3d):
+def _plotter():
     import pyvista as pv
     from vtkmodules.vtkCommonCore import vtkLogger
 
@@ -36,11 +49,6 @@ def _plotter(scene3d):
         vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_ERROR)
     pl = pv.Plotter(off_screen=True, window_size=(600, 450))
     pl.set_background("white")
-    pl.add_mesh(scene3d.surface, scalars="height (mm)", cmap="coolwarm", clim=scene3d.clim,
-                show_scalar_bar=False, name="surface")
-    pl.add_mesh(scene3d.lines, color="black", line_width=1.5, name="lines")
-    pl.view_isometric()
-    pl.reset_camera()
     return pl
 
 
@@ -54,9 +62,13 @@ def build_app(session, server=None):
 
     server = server or get_server("stitchswitch-studio", client_type="vue3")
     state, ctrl = server.state, server.controller
-    pl = _plotter(session.scene3d)
+    pl = _plotter()
+    view_sync = PlotterSync(pl)
+    session.autosave_later = True
     drag = {"id": None, "start": None}
-    pending = {"refresh": None}
+    pending = {"check": None, "scene": None}
+    camera = {"set": False}
+    shown_last = [None, None]         # the design and check verdicts the 3D view was sent
 
     def push_readout() -> None:
         r = session.selected_readout()
@@ -67,14 +79,21 @@ def build_app(session, server=None):
                          | {"force": None if r.force_N is None else round(r.force_N, 3),
                             "message": r.message})
 
-    def push() -> None:
+    def push_panel() -> None:
+        """Everything but the 3D view, sent at once; the scene follows (``schedule_scene``)."""
         s = session.state
         p = s.selected_patch()
         with state:
             push_readout()
             state.selected = s.selected
+            state.selection = list(s.selection)
+            state.size = session.size
             if p is not None:
                 state.diameter, state.fill, state.patch_state = p.diameter_mm, p.fill, p.state
+                state.composite_on = p.composite is not None
+                if p.composite is not None:
+                    state.core_d, state.core_fill = p.composite.core_diameter_mm, p.composite.core_fill
+                state.conductive = p.conductive or ""
             state.canvas_svg = session.canvas_svg()
             state.violations = live_check.rows(session.violations)
             state.n_errors = live_check.errors(session.violations)
@@ -82,14 +101,40 @@ def build_app(session, server=None):
             state.dirty = session.document.dirty(s.design)
             state.n_patches = len(s.design.patches)
             state.edits = s.changed
-        pl.mapper.scalar_range = session.scene3d.clim
-        t0 = time.perf_counter()
-        ctrl.view_update()
-        # sent after the view's geometry: when the page shows it, the 3D data has arrived
-        state.timings = {k: round(1000 * v, 1) for k, v in session.timings_s.items()} | {
-            "view_send_s": round(1000 * (time.perf_counter() - t0), 1)}
-        state.scene_stamp = s.changed
         state.flush()
+        session.write_autosave()
+
+    def push_scene() -> None:
+        pending["scene"] = None
+        shown_last[:] = (session.state.design, colours.status_from_violations(session.violations))
+        session.refresh_scene()
+        t0, c0 = time.perf_counter(), time.process_time()
+        counts = view_sync.sync(session.scene3d, session.violations)
+        if not camera["set"]:
+            pl.view_isometric()
+            pl.reset_camera()
+            camera["set"] = True
+        t1, c1 = time.perf_counter(), time.process_time()
+        ctrl.view_update()
+        sent = {"sync_s": t1 - t0, "sync_cpu_s": c1 - c0, "view_send_s": time.perf_counter() - t1,
+                "view_send_cpu_s": time.process_time() - c1}
+        # sent after the view's geometry, on the same websocket
+        state.timings = {k: round(1000 * v, 2) for k, v in (session.timings_s | sent).items()} | counts
+        state.scene_stamp = session.state.changed
+        state.flush()
+
+    def schedule_scene() -> None:
+        """The 3D view after the panel has gone out, when the design or the check's verdicts
+        changed (a selection alone changes nothing there); edits arriving meanwhile join it."""
+        shown = (session.state.design, colours.status_from_violations(session.violations))
+        if shown[0] is shown_last[0] and shown[1] == shown_last[1]:
+            return
+        if pending["scene"] is None:
+            pending["scene"] = asyncio.get_event_loop().call_later(SCENE_DELAY_S, push_scene)
+
+    def push() -> None:
+        push_panel()
+        schedule_scene()
 
     def guarded(fn):
         def run(*args, **kwargs):
@@ -102,25 +147,53 @@ def build_app(session, server=None):
         return run
 
     @guarded
-    def on_down(px, py, w, h):
+    def on_down(px, py, w, h, shift=False):
+        """A press: on a patch, select it (Shift: add it to the selection or take it out) and
+        draw the edge rule of the patches about to be dragged; elsewhere, start a pan or an add."""
         pt = canvas.to_mm(session.view(), px, py, w, h)
-        drag["id"], drag["start"] = session.state.patch_at(pt), pt
-        if drag["id"] is not None and drag["id"] != session.state.selected:
-            session.state.select(drag["id"])
+        pid = session.state.patch_at(pt)
+        drag["id"], drag["start"] = pid, pt
+        if pid is not None and shift:
+            session.state.toggle_select(pid)
+        elif pid is not None and pid not in session.state.selection:
+            session.state.select(pid)
+        session.dragging = session.state.selection if pid in session.state.selection else ()
 
     @guarded
-    def on_up(px, py, w, h):
+    def on_up(px, py, w, h, shift=False):
+        """A release: after a press on a selected patch, move the selection; after a press on
+        an empty spot, pan the view (moved) or add a patch there (not moved)."""
         pt = canvas.to_mm(session.view(), px, py, w, h)
         pid, start = drag["id"], drag["start"]
         drag["id"] = drag["start"] = None
+        session.dragging = ()
         if start is None:
             return
-        moved = abs(pt[0] - start[0]) + abs(pt[1] - start[1]) > 1.0
-        if pid is not None and moved:
-            p = session.state.design.patch(pid)
-            session.move(pid, (p.centre_mm[0] + pt[0] - start[0], p.centre_mm[1] + pt[1] - start[1]))
-        elif pid is None and not moved:
+        dx, dy = pt[0] - start[0], pt[1] - start[1]
+        moved = abs(dx) + abs(dy) > 1.0
+        if pid is not None and moved and pid in session.state.selection:
+            if len(session.state.selection) > 1:
+                session.move_selection(dx, dy)
+            else:
+                p = session.state.design.patch(pid)
+                session.move(pid, (p.centre_mm[0] + dx, p.centre_mm[1] + dy))
+        elif pid is None and moved:
+            session.pan(dx, dy)
+        elif pid is None and not shift and state.placing is not None:
+            k, state.placing = state.placing, None
+            session.apply_candidate(k, pt)
+        elif pid is None and not shift:
             session.add(pt)
+
+    @guarded
+    def on_wheel(px, py, w, h, delta):
+        pt = canvas.to_mm(session.view(), px, py, w, h)
+        session.zoom(ZOOM_STEP if float(delta) < 0 else 1.0 / ZOOM_STEP, pt)
+
+    @state.change("size")
+    def on_size(size, **_):
+        if size and session.sizes and size != session.size:
+            guarded(session.set_size)(size)
 
     @state.change("diameter", "fill", "patch_state")
     def on_slider(diameter, fill, patch_state, **_):
@@ -135,14 +208,13 @@ def build_app(session, server=None):
             state.flush()
         except (InvalidInputError, StitchSwitchError, OSError) as exc:
             state.message = f"Error: {exc}"
-        # the check and the 3D view after the readout has gone out; slider steps that arrive
-        # meanwhile join the pending refresh, which picks up the latest design
-        if pending["refresh"] is None:
-            pending["refresh"] = asyncio.get_event_loop().call_later(0.001, refresh_later)
+        # slider steps that arrive meanwhile join the pending check, which takes the latest design
+        if pending["check"] is None:
+            pending["check"] = asyncio.get_event_loop().call_later(0.001, check_later)
 
-    def refresh_later():
-        pending["refresh"] = None
-        session.refresh()
+    def check_later():
+        pending["check"] = None
+        session.refresh_check()
         push()
 
     def on_inverse():
@@ -160,9 +232,22 @@ def build_app(session, server=None):
 
     def on_group():
         guarded(session.group)(state.fab_mode)
+        state.plan_k, state.plan_svg = 0, ""
         if session.order is not None:
             state.hoopings = [{"k": k, "hoop": h.hoop.name, "patches": ", ".join(h.patch_ids)}
                               for k, h in enumerate(session.order.hoopings, start=1)]
+
+    def on_plan(k):
+        try:
+            state.plan_svg, state.plan_counts = session.plan_preview(int(k) - 1)
+            state.plan_k = int(k)
+        except (InvalidInputError, StitchSwitchError) as exc:
+            state.message = f"Error: {exc}"
+
+    @ctrl.trigger("studio_file")
+    def exported_file(name):
+        """The bytes of an exported file, for the page's download links."""
+        return session.exported_file(name)
 
     def on_export():
         try:
@@ -180,12 +265,27 @@ def build_app(session, server=None):
     def on_apply(index):
         guarded(session.apply_candidate)(int(index))
 
+    def on_place(index):
+        """Arm placing: the next click on an empty spot of a piece adds the candidate there."""
+        state.placing = int(index)
+        state.message = "click on a piece to place the candidate (Esc cancels)"
+
     def on_key(key):
         if key in ("Delete", "Backspace") and session.state.selected is not None:
             on_delete()
+        elif key == "Escape" and state.placing is not None:
+            state.placing, state.message = None, ""
 
     def on_delete():
-        guarded(session.remove)(session.state.selected)
+        guarded(session.remove_selection)()
+
+    def on_composite():
+        core = state.core_d if state.composite_on else None
+        guarded(session.set_composite)(None if core in (None, "") else float(core),
+                                       None if core in (None, "") else float(state.core_fill))
+
+    def on_conductive():
+        guarded(session.set_conductive)(state.conductive)
 
     def on_violation(index):
         v = session.violations[index]
@@ -197,6 +297,9 @@ def build_app(session, server=None):
                       os.path.dirname(os.path.abspath(session.document.path)), "fabrication"),
                   "target_h": 15.0, "target_ra": "", "target_dmax": "", "target_pmin": "",
                   "diameter": 60.0, "fill": 0.5, "patch_state": "up", "readout_stamp": 0,
+                  "selection": [], "composite_on": False, "core_d": 20.0, "core_fill": 0.9,
+                  "conductive": "", "sizes": session.sizes, "size": session.size,
+                  "plan_k": 0, "plan_svg": "", "plan_counts": {}, "placing": None,
                   "timings": {}})
 
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
@@ -209,6 +312,13 @@ def build_app(session, server=None):
             v3.VBtn("Undo", click=guarded(session.undo), disabled=("!can_undo",), id="undo")
             v3.VBtn("Redo", click=guarded(session.redo), disabled=("!can_redo",), id="redo")
             v3.VBtn("Save", click=on_save, id="save")
+            with html.Div(v_if="sizes.length > 1", id="size-picker", style="width:110px"):
+                v3.VSelect(v_model=("size",), items=("sizes",), label="size", density="compact",
+                           hide_details=True)
+            v3.VBtn("-", click=guarded(lambda: session.zoom(1.0 / ZOOM_STEP)), id="zoom-out",
+                    size="small")
+            v3.VBtn("Fit", click=guarded(session.fit_view), id="fit-view", size="small")
+            v3.VBtn("+", click=guarded(lambda: session.zoom(ZOOM_STEP)), id="zoom-in", size="small")
             html.Span("{{ dirty ? 'unsaved changes' : 'saved' }}", classes="text-caption mx-2",
                       id="dirty")
             html.Span("{{ edits }}", id="edits", style="display:none")
@@ -219,6 +329,9 @@ def build_app(session, server=None):
             drawer.width = 380
             with html.Div(v_if="mode == 'design'", classes="pa-2"):
                 html.H4("Patch {{ selected || '(none: click a piece to add one)' }}", id="inspector-title")
+                html.Div("{{ selection.length }} selected (Shift+click adds or removes; drag moves "
+                         "them all, Delete removes them all)", v_if="selection.length > 1",
+                         id="multi", classes="text-caption")
                 with html.Div(v_if="selected"):
                     with html.Div(id="slider-d"):
                         v3.VSlider(v_model=("diameter",), label="d (mm)", min=20, max=150, step=0.5,
@@ -233,6 +346,19 @@ def build_app(session, server=None):
                              "{{ readout.force }} N {{ readout.message }}", id="readout",
                              classes="text-body-2 my-1")
                     html.Div(v_html=("profile_svg",), id="profile")
+                    with html.Div(classes="d-flex align-center", id="composite"):
+                        v3.VCheckbox(v_model=("composite_on",), label="composite core",
+                                     density="compact", hide_details=True, id="composite-on")
+                        v3.VTextField(v_model=("core_d",), label="core d (mm)", density="compact",
+                                      hide_details=True, disabled=("!composite_on",), id="core-d")
+                        v3.VTextField(v_model=("core_fill",), label="core fill", density="compact",
+                                      hide_details=True, disabled=("!composite_on",), id="core-fill")
+                        v3.VBtn("Set", click=on_composite, size="x-small", id="set-composite")
+                    with html.Div(classes="d-flex align-center", id="conductive"):
+                        v3.VTextField(v_model=("conductive",), label="conductive (ring:0, index:..., "
+                                      "annulus:IN:OUT)", density="compact", hide_details=True,
+                                      id="conductive-text")
+                        v3.VBtn("Set", click=on_conductive, size="x-small", id="set-conductive")
                     v3.VBtn("Delete patch", click=on_delete,
                             size="small", id="delete")
                 v3.VDivider(classes="my-2")
@@ -252,7 +378,9 @@ def build_app(session, server=None):
                               " F {{ c.force_N }} N, {{ c.feasible ? 'passes the check' : "
                               "c.check_errors + ' check errors' }} ")
                     v3.VBtn("Apply", size="x-small", click=(on_apply, "[c.index]"),
-                        classes="apply-candidate")
+                            classes="apply-candidate")
+                    v3.VBtn("Place", size="x-small", click=(on_place, "[c.index]"),
+                            classes="place-candidate")
                 v3.VDivider(classes="my-2")
                 html.H4("Constraints: {{ n_errors }} error(s)", id="check-title")
                 with html.Div(v_for="v in violations", key="v.index", classes="text-body-2 violation",
@@ -262,24 +390,39 @@ def build_app(session, server=None):
                 v3.VSelect(v_model=("fab_mode",), items=("['garment', 'free']",), label="grouping",
                            density="compact")
                 v3.VBtn("Group into hoopings", click=on_group, size="small", id="group")
-                with html.Div(v_for="h in hoopings", key="h.k", classes="text-body-2 hooping"):
-                    html.Span("{{ h.k }}. {{ h.hoop }}: {{ h.patches }}")
+                with html.Div(v_for="h in hoopings", key="h.k", classes="text-body-2 hooping",
+                              click=(on_plan, "[h.k]"), style="cursor:pointer"):
+                    html.Span("{{ h.k }}. {{ h.hoop }}: {{ h.patches }} (stitch plan)")
+                with html.Div(v_if="plan_k", id="plan"):
+                    html.Div("Hooping {{ plan_k }}: {{ plan_counts.stitches }} stitches, "
+                             "{{ plan_counts.jumps }} jumps, {{ plan_counts.trims }} trims, "
+                             "{{ plan_counts.colour_changes }} colour changes, about "
+                             "{{ plan_counts.minutes }} min", classes="text-caption", id="plan-counts")
+                    html.Div(v_html=("plan_svg",), id="plan-svg")
                 with html.Div(id="export-dir"):
                     v3.VTextField(v_model=("export_dir",), label="export folder", density="compact")
                 v3.VBtn("Export", click=on_export, size="small", id="export")
                 with html.Div(v_for="f in exported", key="f", classes="text-caption exported"):
-                    html.Span("{{ f }}")
+                    html.A("{{ f }}", href="#", classes="download",
+                           click="utils.download(f, trigger('studio_file', [f])); $event.preventDefault()")
             html.Div("{{ message }}", id="message", classes="text-body-2 pa-2 text-red")
         with layout.content:
             with html.Div(style="display:flex; height:100%; width:100%"):
                 html.Div(v_html=("canvas_svg",), id="canvas", style="flex:1; min-width:0; user-select:none",
                          mousedown=(on_down, POINTER), mouseup=(on_up, POINTER), tabindex="0",
+                         wheel=(on_wheel, WHEEL),
                          keydown=(on_key, "[$event.key]"))
                 with html.Div(style="flex:1; min-width:0", id="view3d"):
-                    view = vtk_widgets.VtkLocalView(pl.ren_win)
+                    # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js has
+                    # the new geometry, its arrays fetched), counted for the benchmark and tests
+                    view = vtk_widgets.VtkLocalView(
+                        pl.ren_win, before_scene_loaded="window.studioSceneBusy = true",
+                        after_scene_loaded="window.studioSceneBusy = false; "
+                                           "window.studioSceneLoads = (window.studioSceneLoads || 0) + 1")
                     ctrl.view_update = view.update
                     ctrl.view_reset_camera = view.reset_camera
-    push()
+    push_panel()
+    push_scene()
     return server
 
 

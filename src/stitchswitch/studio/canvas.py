@@ -1,7 +1,9 @@
-"""The 2D canvas as SVG markup: the pieces to scale with a 50 mm grid and their names, the
-patches as their relaxed footprints (diameter d / eta) with ids, filled by predicted height,
-the selection, patches named by a check violation, and in Fabrication Mode the hoopings with
-their order. ``to_mm`` maps a pointer position on the drawn SVG back to garment mm.
+"""The 2D canvas as SVG markup: the pieces to scale with a 50 mm grid and their names, mm
+rulers along the top and left edges, the patches as their relaxed footprints (diameter d / eta)
+with ids, filled by predicted height, the selection, patches named by a check violation, while
+a patch is dragged the piece-edge rule's lines (``guides``), and in Fabrication Mode the
+hoopings with their order. ``to_mm`` maps a pointer position on the drawn SVG back to garment
+mm; ``zoomed`` and ``panned`` move the view.
 
 Garment y points up; the SVG's y points down, so y is negated (the viewBox is in mm).
 """
@@ -11,6 +13,7 @@ from dataclasses import dataclass
 from html import escape
 
 import numpy as np
+import shapely
 from matplotlib import colormaps
 from matplotlib.colors import Normalize, to_hex
 
@@ -28,10 +31,30 @@ class View:
     height: float
 
 
+#: the zoom range, relative to the view that fits the pieces
+ZOOM_RANGE = (0.05, 4.0)
+
+
 def view_of(design) -> View:
+    """The view that fits every piece with a margin."""
     pts = np.vstack([p.outline_mm for p in design.pieces])
     lo, hi = pts.min(axis=0) - MARGIN_MM, pts.max(axis=0) + MARGIN_MM
     return View(float(lo[0]), float(-hi[1]), float(hi[0] - lo[0]), float(hi[1] - lo[1]))
+
+
+def zoomed(view: View, factor: float, about_mm, fit: View) -> View:
+    """``view`` magnified by ``factor`` (> 1 zooms in) keeping the garment point ``about_mm``
+    where it is on the screen; its size stays within ``ZOOM_RANGE`` of the ``fit`` view's."""
+    lo, hi = ZOOM_RANGE
+    scale = float(np.clip(view.width / factor, fit.width * lo, fit.width * hi)) / view.width
+    ax, ay = float(about_mm[0]), -float(about_mm[1])
+    return View(ax - (ax - view.x0) * scale, ay - (ay - view.y0) * scale,
+                view.width * scale, view.height * scale)
+
+
+def panned(view: View, dx_mm: float, dy_mm: float) -> View:
+    """``view`` moved so that the garment shifts by (dx_mm, dy_mm) on the screen."""
+    return View(view.x0 - float(dx_mm), view.y0 + float(dy_mm), view.width, view.height)
 
 
 def to_mm(view: View, px: float, py: float, width_px: float, height_px: float) -> tuple[float, float]:
@@ -49,17 +72,91 @@ def _f(v: float) -> str:
     return f"{v:.2f}"
 
 
-def _height_colour(h, hmax: float) -> str:
-    if h is None:
-        return "#bbbbbb"
-    return to_hex(colormaps["coolwarm"](Normalize(-hmax, hmax)(h)))
+def _height_colours(heights, hmax: float) -> list[str]:
+    """The fill of each height (None: grey), one colour-map call for all."""
+    known = np.array([0.0 if h is None else h for h in heights], dtype=float)
+    rgba = colormaps["coolwarm"](Normalize(-hmax, hmax)(known)) if known.size else []
+    return ["#bbbbbb" if h is None else to_hex(c) for h, c in zip(heights, rgba)]
+
+
+def _ruler_step(width_mm: float) -> float:
+    """Labelled ruler step: the first of 10, 50, 100, 500 mm giving at most ~12 labels."""
+    return next((s for s in (10.0, 50.0, 100.0, 500.0) if width_mm / s <= 12), 1000.0)
+
+
+def rulers(v: View) -> list[str]:
+    """mm rulers along the top and left edges of the view (ticks every step / 5, labels every
+    step), drawn in garment mm so that they follow zoom and pan; x and y as in the design file."""
+    step = _ruler_step(max(v.width, v.height))
+    minor = step / 5
+    band = v.height * 0.035
+    size = band * 0.6
+    out = [f'<rect x="{_f(v.x0)}" y="{_f(v.y0)}" width="{_f(v.width)}" height="{_f(band)}" '
+           'fill="#f0f0f0" pointer-events="none" data-ruler="x"/>',
+           f'<rect x="{_f(v.x0)}" y="{_f(v.y0)}" width="{_f(band)}" height="{_f(v.height)}" '
+           'fill="#f0f0f0" pointer-events="none" data-ruler="y"/>']
+    for x in np.arange(np.ceil(v.x0 / minor), np.floor((v.x0 + v.width) / minor) + 1) * minor:
+        major = abs(x / step - round(x / step)) < 1e-9
+        tick = band * (0.6 if major else 0.3)
+        out.append(f'<line x1="{_f(x)}" y1="{_f(v.y0 + band - tick)}" x2="{_f(x)}" '
+                   f'y2="{_f(v.y0 + band)}" stroke="#666" stroke-width="{_f(band / 20)}" '
+                   'pointer-events="none"/>')
+        if major:
+            out.append(f'<text x="{_f(x + band * 0.1)}" y="{_f(v.y0 + size)}" font-size="{_f(size)}" '
+                       f'fill="#444" pointer-events="none" data-ruler-x="{x:g}">{x:g}</text>')
+    for y in np.arange(np.ceil(v.y0 / minor), np.floor((v.y0 + v.height) / minor) + 1) * minor:
+        major = abs(y / step - round(y / step)) < 1e-9
+        tick = band * (0.6 if major else 0.3)
+        out.append(f'<line x1="{_f(v.x0 + band - tick)}" y1="{_f(y)}" x2="{_f(v.x0 + band)}" '
+                   f'y2="{_f(y)}" stroke="#666" stroke-width="{_f(band / 20)}" '
+                   'pointer-events="none"/>')
+        if major:
+            out.append(f'<text x="{_f(v.x0 + band * 0.05)}" y="{_f(y - band * 0.1)}" '
+                       f'font-size="{_f(size * 0.8)}" fill="#444" pointer-events="none" '
+                       f'data-ruler-y="{-y:g}">{-y + 0.0:g}</text>')
+    out.append(f'<text x="{_f(v.x0 + band * 0.1)}" y="{_f(v.y0 + size)}" '
+               f'font-size="{_f(size * 0.8)}" fill="#444" pointer-events="none">mm</text>')
+    return out
+
+
+def guides(design, patch_ids, eta: float, limits) -> list[str]:
+    """The piece-edge rule for dragged patches, as dashed lines on their pieces: the seam line
+    (the seam allowance inside the outline) and, per patch, where its centre must stay (seam
+    allowance + edge clearance + its relaxed radius inside the outline)."""
+    from stitchswitch.layout.check.rules.footprint import garment_radius_mm
+
+    out = []
+    for pid in patch_ids:
+        p = design.patch(pid)
+        poly = shapely.make_valid(shapely.Polygon(design.piece(p.piece).outline_mm))
+        for inset, colour, kind in ((limits.seam_allowance_mm, "#888", "seam"),
+                                    (limits.seam_allowance_mm + limits.edge_clearance_mm
+                                     + garment_radius_mm(p, eta), "#d62728", "centre")):
+            region = poly.buffer(-inset)
+            for ring in _rings(region):
+                pts = " ".join(f"{_f(x)},{_f(-y)}" for x, y in ring)
+                out.append(f'<polygon points="{pts}" fill="none" stroke="{colour}" '
+                           f'stroke-width="0.8" stroke-dasharray="3 2" pointer-events="none" '
+                           f'data-guide="{kind}" data-guide-patch="{escape(pid)}"/>')
+    return out
+
+
+def _rings(region) -> list:
+    if region.is_empty:
+        return []
+    polys = getattr(region, "geoms", [region])
+    return [np.asarray(r.coords) for poly in polys if poly.geom_type == "Polygon"
+            for r in (poly.exterior, *poly.interiors)]
 
 
 def svg(design, heights: dict, eta: float, selected: str | None = None, status: dict | None = None,
-        hoopings=()) -> str:
+        hoopings=(), view: View | None = None, also_selected=(), dragging=(), limits=None) -> str:
     """The canvas of ``design``; ``heights``: {patch id: h mm or None}; ``status``: {patch id:
-    "error" | "warning"}; ``hoopings``: ((hoop rectangle corners (4, 2) garment mm, label), ...)."""
-    v = view_of(design)
+    "error" | "warning"}; ``hoopings``: ((hoop rectangle corners (4, 2) garment mm, label), ...);
+    ``view``: the zoomed and panned view (default: fit the pieces); ``also_selected``: the rest
+    of a multiple selection; ``dragging``: patches being dragged, whose piece-edge rule is drawn
+    (``guides``) with ``limits`` (``CheckLimits``)."""
+    v = view or view_of(design)
     status = status or {}
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{_f(v.x0)} {_f(v.y0)} {_f(v.width)} '
            f'{_f(v.height)}" width="100%" height="100%" style="background:#fafafa">']
@@ -77,22 +174,27 @@ def svg(design, heights: dict, eta: float, selected: str | None = None, status: 
                    f'text-anchor="middle">{escape(piece.name)}</text>')
     known = [abs(h) for h in heights.values() if h is not None]
     hmax = max(known + [1.0])
-    for p in design.patches:
+    fills = _height_colours([heights.get(p.id) for p in design.patches], hmax)
+    for p, fill in zip(design.patches, fills):
         r = p.diameter_mm / (2.0 * eta)
         x, y = p.centre_mm
         stroke = STATUS_STROKE.get(status.get(p.id), "#333")
-        width = 3 if p.id == selected else (2 if p.id in status else 0.8)
-        dash = ' stroke-dasharray="4 2"' if p.id == selected else ""
+        chosen = p.id == selected or p.id in also_selected
+        width = 3 if chosen else (2 if p.id in status else 0.8)
+        dash = ' stroke-dasharray="4 2"' if chosen else ""
         out.append(f'<circle data-patch="{escape(p.id)}" cx="{_f(x)}" cy="{_f(-y)}" r="{_f(r)}" '
-                   f'fill="{_height_colour(heights.get(p.id), hmax)}" fill-opacity="0.85" '
+                   f'fill="{fill}" fill-opacity="0.85" '
                    f'stroke="{stroke}" stroke-width="{width}"{dash}/>')
         out.append(f'<text x="{_f(x)}" y="{_f(-y + 3)}" font-size="9" text-anchor="middle" '
                    f'pointer-events="none">{escape(p.id)}</text>')
+    if dragging:
+        out += guides(design, dragging, eta, limits)
     for corners, label in hoopings:
         pts = " ".join(f"{_f(x)},{_f(-y)}" for x, y in corners)
         out.append(f'<polygon points="{pts}" fill="none" stroke="#1f77b4" stroke-width="1.2" '
                    'stroke-dasharray="6 3" pointer-events="none"/>')
         out.append(f'<text x="{_f(corners[0][0] + 3)}" y="{_f(-corners[0][1] - 3)}" font-size="10" '
                    f'fill="#1f77b4" pointer-events="none">{escape(label)}</text>')
+    out += rulers(v)
     out.append("</svg>")
     return "".join(out)

@@ -56,11 +56,12 @@ def readout(dmap, diameter_mm: float, fill: float) -> Readout:
 
 
 def heights_mm(dmap, design) -> dict:
-    """{patch id: predicted h (mm) or None outside the map} for every patch of ``design``."""
-    out = {}
-    for p in design.patches:
-        try:
-            out[p.id] = float(dmap.query(p.diameter_mm, p.fill).h_mm[0])
-        except InvalidInputError:
-            out[p.id] = None
-    return out
+    """{patch id: predicted h (mm) or None outside the map} for every patch of ``design`` (one
+    query of the map for all patches inside its domain)."""
+    d = np.array([p.diameter_mm for p in design.patches], dtype=float)
+    f = np.array([p.fill for p in design.patches], dtype=float)
+    inside = ((dmap.diameter_mm[0] <= d) & (d <= dmap.diameter_mm[-1])
+              & (dmap.fill[0] <= f) & (f <= dmap.fill[-1]))
+    h = dmap.query(d[inside], f[inside]).h_mm if inside.any() else np.zeros(0)
+    found = iter(h.tolist())
+    return {p.id: (next(found) if ok else None) for p, ok in zip(design.patches, inside)}

@@ -1,33 +1,143 @@
-"""The 3D view's geometry: the design's scene built by ``preview3d.scene.build_scene`` (the one
-scene builder of ``stitchswitch preview``) as pyvista meshes, updated in place so the browser
-view (trame's VTK local view) only receives the new arrays.
+"""The 3D view's geometry: the design's scene built by ``preview3d.scene.SceneBuilder`` (the one
+scene builder of ``stitchswitch preview``, at a lighter resolution), as a few pyvista actors:
+one per piece, one per group of patch surfaces (``group_of``), the outlines by check status;
+an edit changes only the actors holding the parts it rebuilt, and the browser view (trame's
+VTK local view, which sends an array only when its checksum is new) receives only their
+arrays.
+
+Surfaces are coloured by height (the preview's diverging map, symmetric about the flat
+fabric); the outlines show the constraint check: a patch's embroidery boundary, or a piece's
+outline for a problem of the piece itself, is drawn red for an error and orange for a warning
+(``preview3d.colours.STATUS_RGB``), thicker than the plain outlines.
 """
 from __future__ import annotations
 
+import zlib
+
+import numpy as np
+
 from stitchswitch.preview3d import colours
 from stitchswitch.preview3d.render import polylines
-from stitchswitch.preview3d.scene import build_scene
+from stitchswitch.preview3d.scene import SceneBuilder
 from stitchswitch.preview3d.spec import spec_from_design
+
+HEIGHT = "height (mm)"
+#: the view's resolution: half the points around a patch and every second profile node of
+#: ``stitchswitch preview``'s (the same builder), a quarter of its triangles: the browser's
+#: software WebGL and trame-vtk's checksums of every array on every update scale with it
+VIEW_N_THETA = 32
+VIEW_RING_STEP = 2
+#: patch surfaces are drawn by this many actors, a patch always in the same one (by its id):
+#: trame-vtk serializes every actor on every update (about 1 ms of CPU each), so one actor per
+#: patch costs more than resending a few patches' arrays with the edited one
+SURFACE_GROUPS = 8
+LINE_STYLE = {"piece": ("black", 2.0), "patch": ("#404040", 1.0)}
+FLAGGED_WIDTH = 4.0
+
+
+def _hex(rgb) -> str:
+    return "#" + "".join(f"{int(c):02x}" for c in rgb)
 
 
 class Scene3D:
-    """The surface mesh (point data ``height (mm)``) and the outline lines of a design."""
+    """The current scene of a design; ``update`` rebuilds only what an edit changed."""
 
     def __init__(self):
-        import pyvista as pv
-
-        self._pv = pv
-        self.surface = pv.PolyData()
-        self.lines = pv.PolyData()
+        self.builder = SceneBuilder(VIEW_N_THETA, VIEW_RING_STEP)
+        self.scene = None
         self.clim = (-1.0, 1.0)
 
     def update(self, design) -> None:
-        scene = build_scene(spec_from_design(design))
-        points, tris, data = scene.merged()
-        pv = self._pv
-        new = pv.PolyData.from_regular_faces(points, tris) if len(tris) else pv.PolyData()
-        if len(tris):
-            new.point_data["height (mm)"] = data["height_mm"]
-        self.surface.copy_from(new)
-        self.lines.copy_from(polylines(pv, list(scene.lines)))
-        self.clim = colours.height_clim(scene)
+        self.scene = self.builder.build(spec_from_design(design))
+        self.clim = colours.height_clim(self.scene)
+
+    def parts(self, violations=()) -> dict:
+        """{actor name: (kind, content, style)}: one "surface" per piece and per group of patches
+        (``group_of``; content: a tuple of parts), and the outlines as few "lines" actors, one
+        per kind and check status (content: a tuple of lines; style: (colour, width))."""
+        if self.scene is None:
+            return {}
+        out = {f"piece:{p.name}": ("surface", (p,), None) for p in self.scene.pieces}
+        chunks: dict = {}
+        for p in self.scene.patches:
+            chunks.setdefault(group_of(p.id), []).append(p)
+        out |= {f"patches:{k}": ("surface", tuple(ps), None) for k, ps in sorted(chunks.items())}
+        by_status = dict(zip(("patch", "piece"), colours.status_from_violations(violations)))
+        groups: dict = {}
+        for ln in self.scene.lines:
+            groups.setdefault((ln.kind, by_status[ln.kind].get(ln.name, "ok")), []).append(ln)
+        for (kind, status), lines in groups.items():
+            colour, width = LINE_STYLE[kind]
+            if status != "ok":
+                colour, width = _hex(colours.STATUS_RGB[status]), FLAGGED_WIDTH
+            out[f"lines:{kind}:{status}"] = ("lines", tuple(lines), (colour, width))
+        return out
+
+
+def group_of(patch_id: str) -> int:
+    """The surface actor of a patch: fixed by its id, so adding or removing a patch leaves
+    the other groups as they are."""
+    return zlib.crc32(patch_id.encode("utf-8")) % SURFACE_GROUPS
+
+
+def _surface_mesh(pv, parts):
+    meshes = [(p.surface.points, p.surface.triangles) if hasattr(p, "surface")
+              else (p.points, p.triangles) for p in parts]
+    meshes = [m for m in meshes if len(m[1])]
+    if not meshes:
+        return pv.PolyData()
+    offsets = np.cumsum([0] + [len(m[0]) for m in meshes[:-1]])
+    points = np.vstack([m[0] for m in meshes])
+    tris = np.vstack([m[1] + o for m, o in zip(meshes, offsets)])
+    mesh = pv.PolyData.from_regular_faces(points, tris)
+    mesh.point_data[HEIGHT] = points[:, 2].copy()
+    return mesh
+
+
+def _same(a: tuple, b: tuple) -> bool:
+    """The same parts or lines (by identity): nothing to resend."""
+    return len(a) == len(b) and all(x is y for x, y in zip(a, b))
+
+
+class PlotterSync:
+    """Keeps a pyvista ``Plotter`` showing a ``Scene3D``: adds, rebuilds and removes actors by
+    part identity, so unchanged parts keep their arrays (and their checksums). ``sync``
+    returns how many actors it added, rebuilt, removed and kept."""
+
+    def __init__(self, plotter):
+        import pyvista as pv
+
+        self._pv = pv
+        self.plotter = plotter
+        self.actors: dict = {}        # name -> [content, actor, mesh]
+
+    def sync(self, scene3d: Scene3D, violations=()) -> dict:
+        pv, pl = self._pv, self.plotter
+        counts = {"added": 0, "rebuilt": 0, "removed": 0, "kept": 0}
+        parts = scene3d.parts(violations)
+        for name in [n for n in self.actors if n not in parts]:
+            pl.remove_actor(self.actors.pop(name)[1], render=False)
+            counts["removed"] += 1
+        for name, (kind, content, style) in parts.items():
+            entry = self.actors.get(name)
+            if entry is not None and _same(entry[0], content):
+                counts["kept"] += 1
+            else:
+                mesh = _surface_mesh(pv, content) if kind == "surface" else polylines(pv, list(content))
+                if entry is None:
+                    if kind == "surface":
+                        actor = pl.add_mesh(mesh, scalars=HEIGHT if mesh.n_points else None,
+                                            cmap="coolwarm", clim=scene3d.clim,
+                                            show_scalar_bar=False, name=name, render=False)
+                    else:
+                        actor = pl.add_mesh(mesh, color=style[0], line_width=style[1], name=name,
+                                            render=False, lighting=False)
+                    self.actors[name] = [content, actor, mesh]
+                    counts["added"] += 1
+                else:
+                    entry[2].copy_from(mesh)
+                    entry[0] = content
+                    counts["rebuilt"] += 1
+            if kind == "surface":
+                self.actors[name][1].mapper.scalar_range = scene3d.clim
+        return counts

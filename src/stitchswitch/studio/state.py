@@ -1,5 +1,8 @@
 """The studio's app state: the design being edited, the selection, and undo / redo.
 
+The selection is one patch (``selected``, the one the inspector shows) plus, for a multiple
+selection, ``also_selected``; moving or removing the selection acts on all of them at once.
+
 Every action returns nothing and replaces ``design`` with a validated copy (``design_io``'s
 rules, the same as a design file's), pushing the previous design on the undo stack. A run of
 edits of one field of one patch (a slider being dragged) is one undo step. ``changed`` is
@@ -7,6 +10,7 @@ incremented on every change so that views know when to redraw.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import shapely
@@ -19,7 +23,7 @@ from stitchswitch.layout.garment.placement import place_at
 #: the patch a click adds when nothing is selected: the middle of the default map's domain
 DEFAULT_DIAMETER_MM = 60.0
 DEFAULT_FILL = 0.5
-EDITABLE = ("diameter_mm", "fill", "state")
+EDITABLE = ("diameter_mm", "fill", "state", "composite", "conductive")
 HISTORY_LIMIT = 200
 
 
@@ -29,20 +33,22 @@ class StudioState:
     def __init__(self, design: Design):
         self.design = validate_design(design)
         self.selected: str | None = None
+        self.also_selected: tuple[str, ...] = ()
         self.changed = 0
-        self._undo: list[tuple[Design, str | None]] = []
-        self._redo: list[tuple[Design, str | None]] = []
+        self._undo: list[tuple] = []       # (design, selected, also_selected)
+        self._redo: list[tuple] = []
         self._last_edit: tuple | None = None
 
     # --- history ------------------------------------------------------------------------
-    def _commit(self, design: Design, selected: str | None, coalesce: tuple | None = None) -> None:
+    def _commit(self, design: Design, selected: str | None, coalesce: tuple | None = None,
+                also: tuple = ()) -> None:
         design = validate_design(design)
         if coalesce is None or coalesce != self._last_edit:
-            self._undo.append((self.design, self.selected))
+            self._undo.append((self.design, self.selected, self.also_selected))
             del self._undo[:-HISTORY_LIMIT]
         self._redo.clear()
         self._last_edit = coalesce
-        self.design, self.selected = design, selected
+        self.design, self.selected, self.also_selected = design, selected, tuple(also)
         self.changed += 1
 
     @property
@@ -56,26 +62,43 @@ class StudioState:
     def undo(self) -> None:
         if not self._undo:
             return
-        self._redo.append((self.design, self.selected))
-        self.design, self.selected = self._undo.pop()
+        self._redo.append((self.design, self.selected, self.also_selected))
+        self.design, self.selected, self.also_selected = self._undo.pop()
         self._last_edit = None
         self.changed += 1
 
     def redo(self) -> None:
         if not self._redo:
             return
-        self._undo.append((self.design, self.selected))
-        self.design, self.selected = self._redo.pop()
+        self._undo.append((self.design, self.selected, self.also_selected))
+        self.design, self.selected, self.also_selected = self._redo.pop()
         self._last_edit = None
         self.changed += 1
 
     # --- selection ----------------------------------------------------------------------
     def select(self, patch_id: str | None) -> None:
+        """Select one patch (None: nothing), ending a multiple selection."""
         if patch_id is not None:
             self.design.patch(patch_id)          # a clear error for an unknown id
-        self.selected = patch_id
+        self.selected, self.also_selected = patch_id, ()
         self._last_edit = None
         self.changed += 1
+
+    def toggle_select(self, patch_id: str) -> None:
+        """Add a patch to the selection (it becomes the inspector's), or take it out."""
+        self.design.patch(patch_id)
+        chosen = [p for p in self.selection if p != patch_id]
+        if patch_id not in self.selection:
+            chosen.append(patch_id)
+        self.selected = chosen[-1] if chosen else None
+        self.also_selected = tuple(chosen[:-1])
+        self._last_edit = None
+        self.changed += 1
+
+    @property
+    def selection(self) -> tuple[str, ...]:
+        """Every selected patch id, the inspector's last."""
+        return self.also_selected + ((self.selected,) if self.selected is not None else ())
 
     def selected_patch(self):
         return None if self.selected is None else self.design.patch(self.selected)
@@ -120,11 +143,14 @@ class StudioState:
         old = self.design.patch(patch_id)
         piece = self.piece_at(centre_mm) or old.piece
         new = old.replace(centre_mm=(float(centre_mm[0]), float(centre_mm[1])), piece=piece)
-        self._commit(self._with(new), patch_id)
+        also = tuple(p for p in self.selection if p != patch_id) if patch_id in self.selection else ()
+        self._commit(self._with(new), patch_id, also=also)
 
     def edit_patch(self, patch_id: str, *, own_step: bool = False, **changes) -> None:
-        """Change ``diameter_mm``, ``fill`` or ``state`` of a patch; repeated edits of the same
-        field(s) of the same patch are one undo step unless ``own_step``."""
+        """Change ``diameter_mm``, ``fill``, ``state``, ``composite`` (a ``CompositeSpec`` or
+        None) or ``conductive`` (a selection such as ``ring:0`` or None) of a patch, validated
+        as the design file is; repeated edits of the same field(s) of the same patch are one
+        undo step unless ``own_step``."""
         bad = sorted(set(changes) - set(EDITABLE))
         if bad:
             raise InvalidInputError(f"{bad[0]!r} is not an editable patch field "
@@ -134,13 +160,42 @@ class StudioState:
         if new == old:
             return
         key = None if own_step else (patch_id, tuple(sorted(changes)))
-        self._commit(self._with(new), patch_id, coalesce=key)
+        self._commit(self._with(new), patch_id, coalesce=key,
+                     also=self.also_selected if patch_id == self.selected else ())
 
     def remove_patch(self, patch_id: str) -> None:
-        self.design.patch(patch_id)
-        patches = [p for p in self.design.patches if p.id != patch_id]
-        self._commit(self.design.with_patches(patches),
-                     None if self.selected == patch_id else self.selected)
+        self.remove_patches((patch_id,))
+
+    def remove_patches(self, patch_ids) -> None:
+        """Remove several patches in one undo step."""
+        gone = {self.design.patch(pid).id for pid in patch_ids}
+        patches = [p for p in self.design.patches if p.id not in gone]
+        kept = [pid for pid in self.selection if pid not in gone]
+        self._commit(self.design.with_patches(patches), kept[-1] if kept else None,
+                     also=tuple(kept[:-1]))
+
+    def move_patches(self, patch_ids, dx_mm: float, dy_mm: float) -> None:
+        """Move several patches by (dx, dy) mm in one undo step; each moves to the piece under
+        its new centre if there is one."""
+        moved = {}
+        for pid in patch_ids:
+            old = self.design.patch(pid)
+            c = (old.centre_mm[0] + float(dx_mm), old.centre_mm[1] + float(dy_mm))
+            moved[pid] = old.replace(centre_mm=c, piece=self.piece_at(c) or old.piece)
+        self._commit(self.design.with_patches([moved.get(p.id, p) for p in self.design.patches]),
+                     self.selected, also=self.also_selected)
+
+    def set_pieces(self, pieces) -> None:
+        """Replace the pieces (another size of a graded pattern) in one undo step; every patch
+        keeps its piece name and garment position, so each piece of the new size must have the
+        name of a piece a patch is on (the check then judges the patches on the new outlines)."""
+        names = {p.name for p in pieces}
+        lost = [p for p in self.design.patches if p.piece not in names]
+        if lost:
+            raise InvalidInputError(f"patch {lost[0].id} is on piece {lost[0].piece!r}, which "
+                                    "the new pieces do not have (" + ", ".join(sorted(names)) + ")")
+        self._commit(dataclasses.replace(self.design, pieces=tuple(pieces)), self.selected,
+                     also=self.also_selected)
 
     def _with(self, new) -> Design:
         return self.design.with_patches([new if p.id == new.id else p for p in self.design.patches])

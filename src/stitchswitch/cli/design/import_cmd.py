@@ -18,7 +18,8 @@ from stitchswitch.layout.garment.piece_select import rectangle_piece, select_pie
 from stitchswitch.layout.garment.plausible import size_warning
 
 
-def _rectangle(text: str) -> tuple[float, float]:
+def parse_rectangle(text: str) -> tuple[float, float]:
+    """``"WxH"`` (mm) -> (W, H); a clear ``InvalidInputError`` otherwise."""
     parts = text.lower().replace(" ", "").split("x")
     try:
         w, h = (float(v) for v in parts)
@@ -53,7 +54,7 @@ def import_cmd(pattern, rectangle, name, size, pieces, units, output):
     if rectangle is not None:
         if size or pieces or units:
             raise InvalidInputError("--size, --pieces and --units apply to a PATTERN file only")
-        chosen = (rectangle_piece(*_rectangle(rectangle), name=name),)
+        chosen = (rectangle_piece(*parse_rectangle(rectangle), name=name),)
         repairs = ()
     else:
         if not os.path.isfile(pattern):

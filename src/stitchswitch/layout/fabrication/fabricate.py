@@ -93,6 +93,15 @@ def _hoops(machine, design, options):
     return (machine.hoop(name),) if name else machine.hoops
 
 
+def grouping_hoops(design, options: FabricateOptions = FabricateOptions()) -> tuple:
+    """The hoops ``fabricate`` groups ``design`` into under ``options``: ``options.hoop``, else
+    the design's ``machine.hoop`` when the machine is the design's, else every hoop of the
+    machine (``options.machine`` or the design's, from the catalogue)."""
+    machine = catalogue(options.machines_file, export.supported_formats()).machine(
+        options.machine or design.machine.name)
+    return _hoops(machine, design, options)
+
+
 def _design_info(design) -> DesignFile:
     import os
     if design.path is None:
