@@ -10,9 +10,11 @@ true ones (relative to the fixed k_theta_fab, which both share), the validation 
 quantity and the identifiability report's condition number and weak directions.
 
 Two checks: the time target, and the fit quality (the fitted train MSE at or below the noise
-floor). ``--tol 1e-6`` runs every generation (the termination used before).
+floor). ``--tol 1e-6`` runs every generation (the termination used before); with
+``--maxiter K`` it is the run that the default tolerance would stop after K generations.
 
-    python benchmarks/bench_calibrate.py [--workers N] [--maxiter K] [--popsize P] [--tol T] [--json]
+    python benchmarks/bench_calibrate.py [--workers N] [--maxiter K] [--popsize P] [--seed S]
+        [--tol T] [--json]
 """
 from __future__ import annotations
 
@@ -33,6 +35,7 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--maxiter", type=int, default=30)
     ap.add_argument("--popsize", type=int, default=10)
+    ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--tol", type=float, default=None,
                     help="differential evolution's termination tolerance (default: the library's)")
     ap.add_argument("--json", action="store_true")
@@ -53,7 +56,7 @@ def main(argv=None) -> int:
     t, cpu = time.perf_counter(), _cpu_s()
     with make_executor(args.workers) as ex:
         result = cal.calibrate(designs, measured, DEFAULT_MATERIAL, maxiter=args.maxiter,
-                               popsize=args.popsize, seed=0, tol=tol, executor=ex)
+                               popsize=args.popsize, seed=args.seed, tol=tol, executor=ex)
     seconds, cpu_s = time.perf_counter() - t, _cpu_s() - cpu     # the workers have exited
     true_pred, _ = cal.predict_keypoints(true, designs)
     start_pred, _ = cal.predict_keypoints(DEFAULT_MATERIAL, designs)
@@ -61,7 +64,7 @@ def main(argv=None) -> int:
     val_mae = np.mean(np.abs(val_pred - data.keypoints("val")), axis=0)
     out = {
         "n_train": len(train), "workers": args.workers, "maxiter": args.maxiter,
-        "popsize": args.popsize, "tol": tol, "seconds": seconds, "cpu_s": cpu_s,
+        "popsize": args.popsize, "seed": args.seed, "tol": tol, "seconds": seconds, "cpu_s": cpu_s,
         "load_average_1min": _load(), "generations": result.generations,
         "evaluations": result.evaluations, "message": result.message,
         "train_mse_start_mm2": float(np.mean((start_pred - measured) ** 2)),

@@ -29,10 +29,10 @@ Termination. scipy stops the search when the standard deviation of the populatio
 values is at most ``tol`` times their mean, or after ``maxiter`` generations. ``DE_TOL`` (0.2)
 is set from convergence traces on the synthetic reference dataset (docs/calibration.md,
 "Termination"): with popsize 10 and seeds 0, 1 and 2 the spread falls below 20 % of the mean
-after 9-13 generations, while the polished best member fits the training rows and predicts
-the validation rows as well as after 30 generations from the 7th-8th generation on; later
-generations improve the search's best member by a few hundredths of a mm^2, which the polish
-makes up.
+after 9-13 generations, and the polished best member fits the training rows and predicts the
+validation rows as well as after 30 generations already at the earliest generations measured
+(7-9); later generations improve the search's best member by a few hundredths of a mm^2,
+which the polish makes up.
 
 Two resolutions. The search runs at ``SEARCH_NODES`` nodes (``search_material``: the same
 domain and physics, a coarser spacing), where the 25 calibration designs solve in about 40 %
