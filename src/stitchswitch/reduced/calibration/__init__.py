@@ -2,7 +2,8 @@
 parameter matters.
 
 * ``evolution``: ``calibrate`` (differential evolution and a least-squares polish),
-  ``CalibrationResult``, ``identifiability``, ``predict_keypoints``, ``PARAMS``, ``BOUNDS``.
+  ``CalibrationResult``, ``identifiability``, ``predict_keypoints`` (optionally on an executor),
+  ``PARAMS``, ``BOUNDS``, ``DE_TOL`` (the search's termination tolerance).
 * ``checkpoint``: ``checkpoint_path`` / ``provenance_path`` (the files next to a calibrated
   material) and ``resume_point`` (the best material of a previous run, checked).
 * ``designs``: ``CALIBRATION_DESIGNS``, the paper's 25 calibration designs.

@@ -25,6 +25,15 @@ slower (docs/model.md, "Compression as physics").
 The population is updated once per generation (scipy's "deferred" updating) on one worker as on
 many, so the fit does not depend on the number of workers (tests/test_calibration.py).
 
+Termination. scipy stops the search when the standard deviation of the population's objective
+values is at most ``tol`` times their mean, or after ``maxiter`` generations. ``DE_TOL`` (0.2)
+is set from convergence traces on the synthetic reference dataset (docs/calibration.md,
+"Termination"): with popsize 10 and seeds 0, 1 and 2 the spread falls below 20 % of the mean
+after 9-13 generations, and the polished best member fits the training rows and predicts the
+validation rows as well as after 30 generations already at the earliest generations measured
+(7-9); later generations improve the search's best member by a few hundredths of a mm^2,
+which the polish makes up.
+
 Two resolutions. The search runs at ``SEARCH_NODES`` nodes (``search_material``: the same
 domain and physics, a coarser spacing), where the 25 calibration designs solve in about 40 %
 of the time they take at the default 300 nodes, and their keypoints move by 0.01-0.15 mm on
@@ -71,6 +80,8 @@ BOUNDS = {
 }
 #: What ``calibrate`` fits unless told otherwise: every parameter but the scale.
 DEFAULT_FREE = tuple(n for n in PARAMS if n != SCALE_PARAM)
+#: Differential evolution's termination tolerance (module docstring, "Termination").
+DE_TOL = 0.2
 #: Budget of the local polish, in objective evaluations.
 POLISH_EVALUATIONS = 60
 #: Nodes of the differential-evolution search (module docstring, "Two resolutions").
@@ -99,17 +110,37 @@ def _search_bounds(free):
              else BOUNDS[n][:2]) for n in free]
 
 
-def predict_keypoints(material: Material, designs, max_iter: int | None = None) -> tuple[np.ndarray, int]:
-    """(n, 5) keypoints of ``designs`` [(d, p), ...] and how many solves were not certified
-    (``max_iter``: the solves' Newton budget, default ``solve``'s)."""
+def design_keypoints(material: Material, design, max_iter: int | None = None) -> tuple[tuple, bool]:
+    """The five keypoints of one design (d, p) and whether its solve is certified."""
     from stitchswitch.reduced.solvers.solve import solve
 
+    sol = solve(Patch(*design), material, max_iter=max_iter)
+    kp = sol.keypoints
+    return (kp.h_mm, kp.r_a_mm, kp.z_a_mm, kp.r_b_mm, kp.z_b_mm), sol.certified
+
+
+@dataclass(frozen=True)
+class _DesignTask:
+    """Picklable ``design -> design_keypoints(material, design, max_iter)``."""
+
+    material: Material
+    max_iter: int | None
+
+    def __call__(self, design):
+        return design_keypoints(self.material, design, self.max_iter)
+
+
+def predict_keypoints(material: Material, designs, max_iter: int | None = None,
+                      executor=None) -> tuple[np.ndarray, int]:
+    """(n, 5) keypoints of ``designs`` [(d, p), ...] and how many solves were not certified
+    (``max_iter``: the solves' Newton budget, default ``solve``'s). ``executor``: a map-like
+    (``stitchswitch.executor``) that solves the designs in parallel; the result is the same."""
+    task = _DesignTask(material, max_iter)
+    results = list(executor.map(task, list(designs))) if executor is not None else map(task, designs)
     out, bad = [], 0
-    for d, p in designs:
-        sol = solve(Patch(d, p), material, max_iter=max_iter)
-        kp = sol.keypoints
-        out.append((kp.h_mm, kp.r_a_mm, kp.z_a_mm, kp.r_b_mm, kp.z_b_mm))
-        bad += not sol.certified
+    for kp, certified in results:
+        out.append(kp)
+        bad += not certified
     return np.array(out), bad
 
 
@@ -127,14 +158,15 @@ class Objective:
         res = self.residuals(x)
         return float(np.mean(res ** 2))
 
-    def residuals(self, x) -> np.ndarray:
+    def residuals(self, x, executor=None) -> np.ndarray:
         """Predicted minus measured keypoints (mm), flattened, with the penalty of the designs
-        whose solve is not certified spread over them (so mean(res^2) is the objective)."""
+        whose solve is not certified spread over them (so mean(res^2) is the objective).
+        ``executor``: solve the designs in parallel (``predict_keypoints``)."""
         try:
             material = _from_x(x, self.free, self.base)
         except InvalidInputError:
             return np.full(self.measured.size, 1e3)
-        pred, bad = predict_keypoints(material, self.designs, self.max_iter)
+        pred, bad = predict_keypoints(material, self.designs, self.max_iter, executor)
         res = (pred - self.measured).ravel()
         if bad:
             res = np.sqrt(res ** 2 + UNCONVERGED_PENALTY * bad)
@@ -155,14 +187,17 @@ class CalibrationResult:
     interrupted: bool = False
 
 
-def identifiability(objective: Objective, x: np.ndarray, step: float = 1e-3) -> dict:
-    """Singular values of d(keypoints)/d(log-parameters) at ``x`` and the weak directions."""
-    base, _ = predict_keypoints(_from_x(x, objective.free, objective.base), objective.designs)
+def identifiability(objective: Objective, x: np.ndarray, step: float = 1e-3, executor=None) -> dict:
+    """Singular values of d(keypoints)/d(log-parameters) at ``x`` and the weak directions
+    (``executor``: solve the designs in parallel)."""
+    base, _ = predict_keypoints(_from_x(x, objective.free, objective.base), objective.designs,
+                                executor=executor)
     cols = []
     for k in range(x.size):
         xp = x.copy()
         xp[k] += step
-        pred, _ = predict_keypoints(_from_x(xp, objective.free, objective.base), objective.designs)
+        pred, _ = predict_keypoints(_from_x(xp, objective.free, objective.base), objective.designs,
+                                    executor=executor)
         cols.append(((pred - base) / step).ravel())
     J = np.array(cols).T
     _, s, vt = np.linalg.svd(J, full_matrices=False)
@@ -211,9 +246,12 @@ def evolve(objective, bounds, x0, *, maxiter: int, popsize: int, seed: int, tol:
                                   callback=callback)
 
 
-def polish_fit(objective: Objective, x, f: float, bounds, max_evaluations: int = POLISH_EVALUATIONS):
+def polish_fit(objective: Objective, x, f: float, bounds, max_evaluations: int = POLISH_EVALUATIONS,
+               executor=None):
     """(x, objective, evaluations used) after a bounded least-squares polish from ``x``; the
-    start is returned unchanged unless the polish lowers the objective below ``f``."""
+    start is returned unchanged unless the polish lowers the objective below ``f``.
+    ``executor``: solve each evaluation's designs in parallel (an ``Objective`` only; the
+    result is the same)."""
     from scipy.optimize import least_squares
 
     lo, hi = np.array([b[0] for b in bounds]), np.array([b[1] for b in bounds])
@@ -222,7 +260,7 @@ def polish_fit(objective: Objective, x, f: float, bounds, max_evaluations: int =
 
     def fun(v):
         counter["n"] += 1
-        return objective.residuals(v)
+        return objective.residuals(v, executor) if executor is not None else objective.residuals(v)
 
     fit = least_squares(fun, x, bounds=(lo, hi), method="trf", diff_step=1e-3, x_scale="jac",
                         max_nfev=max(1, max_evaluations // (x.size + 1)))
@@ -233,13 +271,16 @@ def polish_fit(objective: Objective, x, f: float, bounds, max_evaluations: int =
 
 
 def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize: int = 10,
-              seed: int = 0, executor=None, free=None, tol: float = 1e-6, x0=None,
+              seed: int = 0, executor=None, free=None, tol: float = DE_TOL, x0=None,
               callback=None, check_identifiability: bool = True, polish: bool = True,
               search_nodes: int | None = SEARCH_NODES) -> CalibrationResult:
     """Differential evolution (scipy) over the free parameters; see the module docstring.
 
     ``designs``: [(diameter_mm, fill)] of the training rows; ``measured``: (n, 5) keypoints.
-    ``executor``: a map-like (``stitchswitch.executor``) for parallel evaluation.
+    ``executor``: a map-like (``stitchswitch.executor``) for parallel evaluation: the members
+    of each generation in the search, the designs of each evaluation in the polish and the
+    identifiability report (the result does not depend on it).
+    ``tol``: the termination tolerance (module docstring, "Termination").
     ``x0``: a starting point in the search space (resume from a checkpoint).
     ``callback(generation, best_material, best_mse)`` after every generation; it may raise
     KeyboardInterrupt, which ends the search with the best point so far (its MSE is the
@@ -275,12 +316,13 @@ def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize:
         best_x, best_f, message, nfev = res.x, float(res.fun), str(res.message), int(res.nfev)
         coarse = search.base != start
         if polish and coarse:                      # to the search resolution's minimum first
-            best_x, _, used = polish_fit(search, best_x, best_f, bounds)
+            best_x, _, used = polish_fit(search, best_x, best_f, bounds, executor=executor)
             nfev += used
         if coarse:                                 # the MSE at the start's own resolution
-            best_f, nfev = objective(best_x), nfev + 1
+            best_f = float(np.mean(objective.residuals(best_x, executor) ** 2))
+            nfev += 1
         if polish:
-            best_x, best_f, used = polish_fit(objective, best_x, best_f, bounds)
+            best_x, best_f, used = polish_fit(objective, best_x, best_f, bounds, executor=executor)
             nfev += used
             message += f"; polished ({used} evaluations)"
     except KeyboardInterrupt:
@@ -288,7 +330,8 @@ def calibrate(designs, measured, start: Material, *, maxiter: int = 30, popsize:
         best_x, best_f, message, nfev = state["best_x"], state["best_f"], "interrupted", -1
     elapsed_s = time.perf_counter() - t0
     material = _from_x(best_x, free, start)
-    ident = identifiability(objective, np.asarray(best_x)) if check_identifiability and not interrupted else {}
+    ident = (identifiability(objective, np.asarray(best_x), executor=executor)
+             if check_identifiability and not interrupted else {})
     fixed = {n: getattr(start, n) for n in PARAMS if n not in free}
     return CalibrationResult(material, best_f, free, fixed, state["gen"], nfev, elapsed_s, message,
                              ident, interrupted)
