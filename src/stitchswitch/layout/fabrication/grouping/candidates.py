@@ -18,7 +18,8 @@ Enumeration (exact for the sets that can be held, before the piece-edge rule):
    position is chosen in S's feasible box (cx in [max_S(x + r) - W/2, min_S(x - r) + W/2], same
    for y): of a 5 x 5 grid over the box, the positions whose frame ring touches the fewest
    other patches come first, then those nearest the box centre; the first allowed position is
-   kept (and may hold more than S). A set with no allowed position is dropped.
+   kept (and may hold more than S). A set with no allowed position on that grid gets a
+   17 x 17 grid; a set with none there either is dropped.
 3. A patch that no kept placement holds gets a search of its own: a 2 mm grid over every
    position that holds it, for every hoop and orientation; the allowed position holding the
    most patches is added. If there is none the patch cannot be hooped: ``InvalidInputError``.
@@ -38,6 +39,8 @@ from stitchswitch.layout.embroidery.hoop_spec import Hoop
 from stitchswitch.layout.fabrication.grouping import bitsets
 
 TOL_MM = 1e-9
+#: the grids (points per axis) tried in turn over a held set's feasible box
+GRIDS = (5, 17)
 
 
 @dataclass(frozen=True)
@@ -83,7 +86,19 @@ def _variants(hoops):
 def _choose_positions(members, x, y, r, hoop, o, piece):
     """For each row of ``members`` (bool (s, n)): an allowed position in its feasible box, or
     NaN. Tries a 5 x 5 grid over the box, fewest frame-ring contacts first, then nearest the
-    box centre."""
+    box centre; the rows with no allowed position on it get a 17 x 17 grid (a box of a few
+    hundred mm whose allowed strip is narrower than the 5 x 5 grid's step)."""
+    out = _positions_on_grid(members, x, y, r, hoop, o, piece, GRIDS[0])
+    for n_grid in GRIDS[1:]:
+        miss = np.flatnonzero(~np.isfinite(out[:, 0]))
+        if not len(miss):
+            break
+        out[miss] = _positions_on_grid(members[miss], x, y, r, hoop, o, piece, n_grid)
+    return out
+
+
+def _positions_on_grid(members, x, y, r, hoop, o, piece, n_grid):
+    """``_choose_positions`` on one n_grid x n_grid grid over each feasible box."""
     w, h = hoop.usable_mm(o)
     fw, fh = hoop.field_mm(o)
     ow, oh = hoop.outer_mm(o)
@@ -92,7 +107,7 @@ def _choose_positions(members, x, y, r, hoop, o, piece):
     hi_x = np.nanmin(big * (x - r), axis=1) + w / 2
     lo_y = np.nanmax(big * (y + r), axis=1) - h / 2
     hi_y = np.nanmin(big * (y - r), axis=1) + h / 2
-    t = np.linspace(0.0, 1.0, 5)
+    t = np.linspace(0.0, 1.0, n_grid)
     a, b = (g.ravel() for g in np.meshgrid(t, t))
     cx = lo_x[:, None] + a[None, :] * (hi_x - lo_x)[:, None]          # (s, 25)
     cy = lo_y[:, None] + b[None, :] * (hi_y - lo_y)[:, None]
