@@ -82,6 +82,7 @@ class HoopingFiles:
     svg: str
     template_a4: str | None = None       # garment mode: 1:1 printable templates (PDF)
     template_letter: str | None = None
+    marks_dxf: str | None = None         # garment mode: the same marks as DXF (relaxed mm)
 
 
 @dataclass(frozen=True)
@@ -138,12 +139,13 @@ class HoopingDoc:
     time_min: float
     gap_crossings: int = 0          # thread laid over unstitched fabric (the stitch audit)
     gap_crossing_mm: float = 0.0
+    hoop_reason: str = ""           # why this hoop, in plain words (``hoop_reason``)
 
     def as_dict(self) -> dict:
         d = {"number": self.number, "hoop": self.hoop, "field_mm": list(self.field_mm),
              "margin_mm": self.margin_mm, "frame_width_mm": self.frame_width_mm,
              "jef_code": self.jef_code, "orientation_deg": self.orientation_deg,
-             "piece": self.piece}
+             "piece": self.piece, "hoop_reason": self.hoop_reason}
         if self.piece is not None:
             d.update(centre_stretched_mm=list(self.centre_stretched_mm),
                      centre_garment_mm=list(self.centre_garment_mm),

@@ -49,6 +49,7 @@ from stitchswitch.layout.fabrication.document import (
 from stitchswitch.layout.fabrication.grouping.footprints import stretch
 from stitchswitch.layout.fabrication.grouping.group import MODES, group
 from stitchswitch.layout.fabrication.grouping.result import Grouping
+from stitchswitch.layout.fabrication.hoop_reason import hoop_reason
 from stitchswitch.layout.fabrication.layout_plot import alignment_marks, hooping_figure, overview_figure
 from stitchswitch.layout.fabrication.order import StitchingOrder, order_hoopings
 from stitchswitch.layout.fabrication.plan import audit_hooping, plan_hooping
@@ -209,7 +210,8 @@ def fabricate(design, outdir, options: FabricateOptions = FabricateOptions(),
         files[names["png"]], files[names["svg"]] = figs["png"], figs["svg"]
         images[names["png"]] = files[names["png"]]
         stitched |= set(h.patch_ids)
-        doc_hoops.append(_hooping_doc(k, h, hplan, specs, eta, names, threads))
+        doc_hoops.append(_hooping_doc(k, h, hplan, specs, eta, names, threads,
+                                      hoop_reason(h, hoops, feet, pieces)))
     for kind, data in overview_figure(order.hoopings, feet, pieces).items():
         files[f"overview.{kind}"] = data
     images["overview.png"] = files["overview.png"]
@@ -234,7 +236,7 @@ def _label(design, stem: str) -> str:
     return f"{base} {stem}"
 
 
-def _hooping_doc(k, h, hplan, specs, eta, names, threads) -> HoopingDoc:
+def _hooping_doc(k, h, hplan, specs, eta, names, threads, reason) -> HoopingDoc:
     plan = hplan.plan
     garment = h.piece is not None
     marks = h.to_piece(np.array(alignment_marks(h.hoop))) / eta if garment else None
@@ -255,7 +257,7 @@ def _hooping_doc(k, h, hplan, specs, eta, names, threads) -> HoopingDoc:
         stitches=plan.stitch_count, trims=plan.trim_count, jumps=plan.jump_count,
         colour_changes=plan.color_changes, thread_length_m=_r(plan.thread_length_mm / 1000),
         time_min=_r(plan.sewing_time_min, 2), gap_crossings=threads.gap_crossings,
-        gap_crossing_mm=_r(threads.gap_crossing_mm))
+        gap_crossing_mm=_r(threads.gap_crossing_mm), hoop_reason=reason)
 
 
 def _doc(design, machine, fmt, options, eta, grouping, order, doc_hoops) -> FabricationDoc:
