@@ -3,9 +3,9 @@ per hooping the steps in order with the colour stops and why its hoop, the algor
 only at the end, and the same content in Markdown, HTML and fabrication.json."""
 import json
 
-from helpers import cli_run as run
-
 from test_cli_fabricate import SMALL, patch, write_design
+
+from helpers import cli_run as run
 
 
 def _fabricate(tmp_path, patches, *args):
@@ -77,12 +77,19 @@ def test_hoop_reasons(tmp_path):
 
 def test_which_way_up(tmp_path):
     """A turned hooping says where the pattern's up points; a straight one too."""
-    from stitchswitch.layout.fabrication.workshop import orientation_text
-    out, doc = _fabricate(tmp_path, SMALL)
+    out, doc = _fabricate(tmp_path, SMALL + [patch("d", 150, 40, 60, 0.8)], "--hoop", "RE20b")
     md = (out / "fabrication.md").read_text()
-    from stitchswitch.layout.fabrication.document import HoopingDoc
+    turns = {h["orientation_deg"] for h in doc["hoopings"]}
+    assert turns == {0, 90}, turns                 # both texts are exercised
     for h in doc["hoopings"]:
-        stub = HoopingDoc.__new__(HoopingDoc)
-        object.__setattr__(stub, "piece", h["piece"])
-        object.__setattr__(stub, "orientation_deg", h["orientation_deg"])
-        assert f"Hoop it in the {h['hoop']}, {orientation_text(stub)}" in md
+        text = ("turned a quarter: the hoop lies across the piece, the pattern's up (+y) pointing "
+                "to your right and its +x towards you" if h["orientation_deg"] == 90 else
+                "straight: the pattern's up (+y) pointing away from you and its +x to your right")
+        assert f"Hoop it in the RE20b, {text}" in md
+        # the marks agree: the hoop's right-hand mark (its +x side) lies along the pattern's
+        # +y when turned, along its +x when straight; the top mark (away from you) along -x / +y
+        (cx, cy), right, top = h["alignment_marks_garment_mm"][:3]
+        if h["orientation_deg"] == 90:
+            assert right[1] > cy and abs(right[0] - cx) < 1e-6 and top[0] < cx
+        else:
+            assert right[0] > cx and abs(right[1] - cy) < 1e-6 and top[1] > cy
