@@ -6,7 +6,8 @@
 * ``document``: ``FabricationDoc``, what fabrication.json holds (``as_dict``), read by the sheet.
 * ``sheet``: the fabrication sheet (Markdown, HTML), its plain-language parts in ``workshop``
   (legend, steps, colour stops, conflict advice) and ``hoop_reason`` (why each hooping's hoop);
-  ``layout_plot``: the hooping figures; ``template``: the 1:1 printable templates.
+  ``layout_plot``: the hooping figures; ``template``: the 1:1 printable templates;
+  ``marks_dxf``: the same marks as DXF.
 
 The top of ``layout``: it imports ``embroidery``, ``garment`` and ``check``.
 """

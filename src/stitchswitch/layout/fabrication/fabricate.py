@@ -10,7 +10,8 @@
 4. per hooping: the stitch plan (``hoop_plan``, patch geometry from
    ``patch_design.geometry_for``), the embroidery file through the export registry
    (``export.encode``, with the hooping's hoop for the JEF code) and the layout as PNG and SVG
-   (``hoop_layout_plot``);
+   (``hoop_layout_plot``); in garment mode the 1:1 templates (PDF, A4 and Letter: ``template``)
+   and the same marks as DXF (``marks_dxf``);
 5. an overview (PNG, SVG), ``fabrication.json``, and the sheet as ``fabrication.md`` and
    ``fabrication.html`` (``fabrication_sheet``).
 
@@ -51,6 +52,7 @@ from stitchswitch.layout.fabrication.grouping.group import MODES, group
 from stitchswitch.layout.fabrication.grouping.result import Grouping
 from stitchswitch.layout.fabrication.hoop_reason import hoop_reason
 from stitchswitch.layout.fabrication.layout_plot import alignment_marks, hooping_figure, overview_figure
+from stitchswitch.layout.fabrication.marks_dxf import marks_dxf
 from stitchswitch.layout.fabrication.order import StitchingOrder, order_hoopings
 from stitchswitch.layout.fabrication.plan import audit_hooping, plan_hooping
 from stitchswitch.layout.fabrication.sheet import html_page, markdown
@@ -195,13 +197,15 @@ def fabricate(design, outdir, options: FabricateOptions = FabricateOptions(),
         stem = f"hoop{k:0{width}d}"
         hplan = plan_hooping(h, specs, cached, prm)
         names = {"embroidery": f"{stem}.{fmt.name}", "png": f"{stem}.png", "svg": f"{stem}.svg"}
-        if h.piece is not None:                 # garment mode: the 1:1 templates
+        if h.piece is not None:                 # garment mode: 1:1 templates and DXF marks
             outline = design.piece(h.piece).outline_mm
+            mine = [specs[p] for p in h.patch_ids]
             for paper in PAPERS:
                 name = f"{stem}-template-{paper}.pdf"
                 names[f"template_{paper}"] = name
-                files[name] = template_pdf(k, h, outline, [specs[p] for p in h.patch_ids],
-                                           eta, paper)
+                files[name] = template_pdf(k, h, outline, mine, eta, paper)
+            names["marks_dxf"] = f"{stem}-marks.dxf"
+            files[names["marks_dxf"]] = marks_dxf(k, h, outline, mine, eta)
         files[names["embroidery"]] = export.encode(hplan.plan, fmt.name, h.hoop,
                                                    label=_label(design, stem))
         threads = audit_hooping(hplan, h, options.resolution_mm, prm.min_stitch_mm)
