@@ -77,7 +77,9 @@ def test_hoop_reasons(tmp_path):
 
 def test_which_way_up(tmp_path):
     """A turned hooping says where the pattern's up points; a straight one too."""
-    out, doc = _fabricate(tmp_path, SMALL + [patch("d", 150, 40, 60, 0.8)], "--hoop", "RE20b")
+    pairs = [patch("a", 50, 50, 40, 0.8), patch("b", 50 + 150 / 1.7, 50, 40, 0.8),   # across
+             patch("c", 250, 50, 40, 0.8), patch("d", 250, 50 + 150 / 1.7, 40, 0.8)]  # along y
+    out, doc = _fabricate(tmp_path, pairs, "--hoop", "RE20b")
     md = (out / "fabrication.md").read_text()
     turns = {h["orientation_deg"] for h in doc["hoopings"]}
     assert turns == {0, 90}, turns                 # both texts are exercised
@@ -93,3 +95,52 @@ def test_which_way_up(tmp_path):
             assert right[1] > cy and abs(right[0] - cx) < 1e-6 and top[0] < cx
         else:
             assert right[0] > cx and abs(right[1] - cy) < 1e-6 and top[1] > cy
+
+
+#: four patches so close that with the fewest hoopings (2 in the SQ14b) one frame lands on a
+#: stitched patch; three hoopings avoid it (found by the conflict search, see
+#: tests/test_conflict_plan.py)
+CLOSE = [patch("a", 216.0, 114.5, 26.5, 0.8), patch("b", 136.5, 97.0, 28.8, 0.8),
+         patch("c", 113.3, 155.3, 23.7, 0.8), patch("d", 171.9, 163.3, 32.1, 0.8)]
+
+
+def test_sheet_says_why_a_hooping_more(tmp_path):
+    design = write_design(tmp_path / "design.json", CLOSE, size=(306, 259))
+    out = tmp_path / "fab"
+    r = run("fabricate", design, "--hoop", "SQ14b", "-o", out)
+    assert r.exit_code == 0, r.output
+    assert "conflicts   none; 2 hooping(s) would leave 1" in r.output
+    doc = json.loads((out / "fabrication.json").read_text())
+    g = doc["grouping"]
+    assert len(doc["hoopings"]) == 3 and doc["order"]["conflicts"] == []
+    assert (g["fewest_hoopings"], g["fewest_hoopings_conflicts"], g["conflicts_exact"]) == \
+        (2, 1, True)
+    md = (out / "fabrication.md").read_text()
+    assert ("| hoopings | 3, in the order below: 1 more than the fewest possible (2), because "
+            "with 2 a hoop frame would land on a stitched patch 1 time(s), which can crush it |"
+            ) in md
+    r = run("fabricate", design, "--hoop", "SQ14b", "-o", tmp_path / "again")
+    assert (tmp_path / "again" / "fabrication.md").read_bytes() == md.encode()
+
+
+def test_unavoidable_conflict_named_with_what_to_do(tmp_path):
+    """Two 70 mm patches 95 mm apart on the stretched fabric: no SQ14b field holds both and
+    every field holding one puts its frame on the other, so one conflict is unavoidable; the
+    sheet names the frame, the patch and what to do, in the conflict list and in the steps."""
+    design = write_design(tmp_path / "design.json", [patch("a", 100, 100, 70, 0.8),
+                                                     patch("b", 100 + 95 / 1.7, 100, 70, 0.8)])
+    out = tmp_path / "fab"
+    r = run("fabricate", design, "--hoop", "SQ14b", "-o", out)
+    assert r.exit_code == 0, r.output
+    assert "conflicts   1, the fewest possible (see fabrication.md)" in r.output
+    doc = json.loads((out / "fabrication.json").read_text())
+    (c,) = doc["order"]["conflicts"]
+    assert c["hooping"] == 2 and c["stitched_in_hooping"] == 1
+    md = (out / "fabrication.md").read_text()
+    assert ("1 place(s) where a frame lands on a patch stitched earlier; this is the fewest "
+            "possible over the hoop positions tried") in md
+    assert (f"- hooping 2: its frame lands on patch {c['patch']}, stitched in hooping 1. Before "
+            "clamping, lay a folded cloth or foam strip over") in md
+    second = md.split("### Hooping 2")[1]
+    assert f"Pad before clamping: the frame lands on {c['patch']} (stitched in hooping 1)." \
+        in second

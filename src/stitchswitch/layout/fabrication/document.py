@@ -39,7 +39,9 @@ class StretchInfo:
 
 @dataclass(frozen=True)
 class GroupingInfo:
-    """How the patches were grouped into hoopings. ``spacing_mm`` only in free mode."""
+    """How the patches were grouped into hoopings. ``spacing_mm`` only in free mode; the
+    ``fewest_hoopings*`` and ``conflicts_exact`` only in garment mode (hoopings and order
+    planned for the fewest frame conflicts first: ``grouping.conflict_plan``)."""
 
     method: str
     status: str
@@ -53,6 +55,9 @@ class GroupingInfo:
     time_limit_s: float | None
     note: str
     spacing_mm: float | None = None
+    fewest_hoopings: int | None = None           # garment: the set cover's count
+    fewest_hoopings_conflicts: int | None = None  # the frame conflicts that grouping leaves
+    conflicts_exact: bool = False                 # the plan's conflicts proven fewest
 
     def as_dict(self) -> dict:
         out = {"method": self.method, "status": self.status, "optimal": self.optimal,
@@ -63,6 +68,10 @@ class GroupingInfo:
                "note": self.note}
         if self.spacing_mm is not None:
             out["spacing_mm"] = self.spacing_mm
+        if self.fewest_hoopings is not None:
+            out.update(fewest_hoopings=self.fewest_hoopings,
+                       fewest_hoopings_conflicts=self.fewest_hoopings_conflicts,
+                       conflicts_exact=self.conflicts_exact)
         return out
 
 

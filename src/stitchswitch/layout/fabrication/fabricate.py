@@ -273,7 +273,9 @@ def _doc(design, machine, fmt, options, eta, grouping, order, doc_hoops) -> Fabr
         hoopings_lower_bound=rep.hoopings_lower_bound,
         first_fit_decreasing_hoopings=rep.greedy_hoopings, candidates=rep.candidates,
         time_limit_s=options.time_limit_s, note=rep.note,
-        spacing_mm=_r(options.spacing_mm) if grouping.mode == "free" else None)
+        spacing_mm=_r(options.spacing_mm) if grouping.mode == "free" else None,
+        fewest_hoopings=rep.fewest_hoopings, fewest_hoopings_conflicts=rep.fewest_hoopings_conflicts,
+        conflicts_exact=bool(rep.conflicts_exact))
     return FabricationDoc(
         generator=GENERATOR, version=__version__, design=_design_info(design),
         mode=grouping.mode,

@@ -131,8 +131,9 @@ def _conflict_lines(doc: FabricationDoc, esc=str) -> list[str]:
         return ["None: every hooping is its own piece of fabric."]
     if not conf:
         return ["None: no hoop frame lands on a patch stitched before it."]
-    how = ("the minimum for this grouping (exact order search)" if doc.order_exact else
-           "minimised heuristically (too many hoopings for the exact search)")
+    how = ("the fewest possible over the hoop positions tried (exhaustive search of hoopings "
+           "and order)" if doc.grouping.conflicts_exact else
+           "the fewest found (a beam search over hoopings and order; not proven the fewest)")
     lines = [f"{len(conf)} place(s) where a frame lands on a patch stitched earlier; this is "
              f"{how}. What to do at each:", ""]
     lines += [f"- {conflict_advice(c, esc)}" for c in conf]

@@ -52,7 +52,7 @@ def summary_rows(doc: FabricationDoc, esc=str) -> list[tuple[str, str]]:
                             "other" if doc.mode == "garment" else
                             "stitch the patches on separate fabric, cut them out and sew "
                             "them on"),
-            ("hoopings", f"{t.hoopings}, in the order below"),
+            ("hoopings", f"{t.hoopings}, in the order below" + _extra_hoopings(doc)),
             ("patches", str(t.patches)),
             ("stitches", f"{t.stitches}, about {t.time_min:.0f} min of stitching at "
                          f"{m.stitches_per_minute:g} stitches/min (hooping not counted)"),
@@ -61,6 +61,22 @@ def summary_rows(doc: FabricationDoc, esc=str) -> list[tuple[str, str]]:
     if doc.mode == "free":
         rows.insert(4, ("spacing", f"{doc.grouping.spacing_mm:g} mm between patches"))
     return rows
+
+
+def _extra_hoopings(doc: FabricationDoc) -> str:
+    """Why the plan has more hoopings than the fewest possible, if it has."""
+    g = doc.grouping
+    if g.fewest_hoopings is None or doc.totals.hoopings <= g.fewest_hoopings:
+        return ""
+    more = doc.totals.hoopings - g.fewest_hoopings
+    return (f": {more} more than the fewest possible ({g.fewest_hoopings}), because with "
+            f"{g.fewest_hoopings} a hoop frame would land on a stitched patch "
+            f"{g.fewest_hoopings_conflicts} time(s), which can crush it")
+
+
+def _proof(g) -> str:
+    return ("proven the fewest over the hoop positions tried, by exhaustive search"
+            if g.conflicts_exact else "the fewest a beam search found, not proven")
 
 
 def method_rows(doc: FabricationDoc) -> list[tuple[str, str]]:
@@ -74,6 +90,10 @@ def method_rows(doc: FabricationDoc) -> list[tuple[str, str]]:
             ("simple packing (first-fit decreasing)",
              f"{g.first_fit_decreasing_hoopings} hooping(s)"),
             ("hoop positions tried", str(g.candidates)),
+            *([("frame conflicts", f"{len(doc.conflicts)}, planned before the number of "
+                f"hoopings ({_proof(g)}); the fewest hoopings ({g.fewest_hoopings}) would "
+                f"leave {g.fewest_hoopings_conflicts}")] if g.fewest_hoopings is not None
+              else []),
             ("stitching order", "the order with the fewest frame conflicts (exhaustive)"
              if doc.order_exact else "greedy (too many hoopings for the exhaustive order)"),
             ("note", g.note)]

@@ -53,6 +53,7 @@ class Candidates:
     holds: np.ndarray           # (m, n) bool
     overlap: np.ndarray         # (m,) patches of the piece under the frame ring, not held
     hoops: tuple[Hoop, ...]
+    touches: np.ndarray | None = None   # (m, n) bool: the patches ``overlap`` counts
 
     def __len__(self) -> int:
         return len(self.hoop_index)
@@ -210,7 +211,7 @@ def _holds_of(rows, x, y, r, hoops, piece_of, n):
 
 def _assemble(rows, x, y, r, hoops, piece_of, n) -> Candidates:
     holds = np.zeros((len(rows), n), dtype=bool)
-    overlap = np.zeros(len(rows), dtype=int)
+    touches = np.zeros((len(rows), n), dtype=bool)
     for j, (k, o, cx, cy, pi) in enumerate(rows):
         hoop = hoops[k]
         w, h = hoop.usable_mm(o)
@@ -218,8 +219,8 @@ def _assemble(rows, x, y, r, hoops, piece_of, n) -> Candidates:
         same = piece_of == pi
         c1, c2 = np.array([cx]), np.array([cy])
         holds[j] = _held(c1, c2, x, y, r, w, h)[0] & same
-        overlap[j] = int((ring_overlap(c1, c2, fw, fh, hoop.frame_width_mm, x, y, r)[0]
-                          & same & ~holds[j]).sum())
+        touches[j] = (ring_overlap(c1, c2, fw, fh, hoop.frame_width_mm, x, y, r)[0]
+                      & same & ~holds[j])
     # one row per distinct (hoop, orientation, piece, held set): the first found is kept
     key = np.column_stack([np.array([rw[0] for rw in rows]), np.array([rw[1] for rw in rows]),
                            np.array([rw[4] for rw in rows]), bitsets.pack(holds).view(np.int64)]) \
@@ -231,4 +232,5 @@ def _assemble(rows, x, y, r, hoops, piece_of, n) -> Candidates:
                       np.array([[rows[j][2], rows[j][3]] for j in keep],
                                dtype=float).reshape(-1, 2),
                       np.array([rows[j][4] for j in keep], dtype=int),
-                      holds[keep], overlap[keep], tuple(hoops))
+                      holds[keep], touches[keep].sum(axis=1).astype(int), tuple(hoops),
+                      touches[keep])
