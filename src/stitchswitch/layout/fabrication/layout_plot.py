@@ -100,7 +100,7 @@ def _disc(ax, xy, d, **kw):
 
 
 def _hooping_legend(ax, garment: bool) -> None:
-    """A legend of the figure's marks, outside the axes (the sheet's legend says more)."""
+    """A legend of the figure's marks, below the axes (the sheet's legend says more)."""
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
     handles = [Patch(fc="0.6", alpha=0.35, ec="0.4", label="hoop frame (clamps)"),
@@ -113,8 +113,8 @@ def _hooping_legend(ax, garment: bool) -> None:
         handles += [Patch(fc="0.7", ec="0.4", label="stitched earlier"),
                     Line2D([], [], color="0.45", ls=":", label="stitched later"),
                     Patch(fc="#f5b7b1", ec="#c0392b", label="frame on a stitched patch")]
-    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=6,
-              frameon=False)
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.09), ncol=3,
+              fontsize=6, frameon=False)
 
 
 def hooping_figure(k: int, total: int, hooping, hplan, specs, feet, pieces, stitched_before,
@@ -126,7 +126,7 @@ def hooping_figure(k: int, total: int, hooping, hplan, specs, feet, pieces, stit
     hoop = hooping.hoop
     ow, oh = hoop.width_mm + 2 * hoop.frame_width_mm, hoop.height_mm + 2 * hoop.frame_width_mm
     with matplotlib.rc_context({"svg.hashsalt": "stitchswitch", "svg.fonttype": "none"}):
-        fig, ax = plt.subplots(figsize=(7.6, 6.0 * min(1.6, max(0.6, oh / ow))))
+        fig, ax = plt.subplots(figsize=(6.4, 1.2 + 6.0 * min(1.6, max(0.6, oh / ow))))
         if hooping.piece is not None:
             piece = next(p for p in pieces if p.name == hooping.piece)
             outline = hooping.to_hoop(piece.outline_mm)
