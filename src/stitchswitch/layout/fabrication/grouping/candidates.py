@@ -66,16 +66,8 @@ def _allowed(piece, cx, cy, ow, oh) -> np.ndarray:
     return hoopable.allowed(piece, cx, cy, ow, oh)
 
 
-def ring_overlap(cx, cy, fw, fh, frame, x, y, r) -> np.ndarray:
-    """(len(cx), n) bool: disc i meets the frame ring of width ``frame`` around a field
-    fw x fh centred at (cx, cy): it meets the outer rectangle and is not inside the field."""
-    dx = np.abs(x[None, :] - cx[:, None])
-    dy = np.abs(y[None, :] - cy[:, None])
-    ow, oh = fw / 2 + frame, fh / 2 + frame
-    ex, ey = np.maximum(dx - ow, 0.0), np.maximum(dy - oh, 0.0)
-    meets_outer = ex * ex + ey * ey < (r[None, :] - TOL_MM) ** 2
-    inside_field = (dx <= fw / 2 - r[None, :] + TOL_MM) & (dy <= fh / 2 - r[None, :] + TOL_MM)
-    return meets_outer & ~inside_field & (frame > 0)
+#: the frame-ring test of the check (``hoopable.ring_touches``)
+ring_overlap = hoopable.ring_touches
 
 
 def _variants(hoops):
