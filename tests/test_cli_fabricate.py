@@ -51,7 +51,8 @@ def test_garment_outputs_match_the_plan(tmp_path):
     assert n == doc["grouping"]["hoopings"] == 2 and doc["grouping"]["method"] == "mip"
     assert doc["grouping"]["optimal"] and doc["order"]["conflicts"] == []
     names = {f"hoop0{k}{e}" for k in range(1, n + 1)
-             for e in (".jef", ".png", ".svg", "-template-a4.pdf", "-template-letter.pdf")}
+             for e in (".jef", ".png", ".svg", "-template-a4.pdf", "-template-letter.pdf",
+                       "-marks.dxf")}
     assert sorted(os.listdir(out)) == sorted(names | {"overview.png", "overview.svg",
                                                       "fabrication.json", "fabrication.md",
                                                       "fabrication.html"})

@@ -32,6 +32,8 @@ ARGS = {
     "bistability-map": ["bistability-map", "--diameters", "40,60", "--fills", "0.8"],
     "fem-solve": ["fem-solve", "-d", "40", "-p", "0.8", "--elements", "8"],
     "check": ["check", "design.json"],
+    "inspect": ["inspect", os.path.join(os.path.dirname(__file__), "data", "external",
+                                        "embroidery", "Star.JEF")],
 }
 #: Exit codes other than 0 that a clean run may have (check: 1 when the design has violations).
 EXIT = {"check": (0, 1), "fem-check": (0, 1)}       # 1: a finding (violations, outside the budget)

@@ -131,6 +131,15 @@ def test_garment_row_known_optimum_turn_and_smaller_hoop():
     assert g3.count == 1 and g3.hoopings[0].hoop.name == "SQ"
 
 
+def test_garment_finds_a_narrow_strip_of_allowed_positions():
+    """Two 40 mm discs 170 mm apart on a 510 x 425 mm piece fit one RE36b (outer 250 x 410 mm)
+    only with the field centre in a 15 mm strip (y 205..220), between the points of the 5 x 5
+    grid over the set's feasible box (y 117..257): the 17 x 17 grid finds it."""
+    feet = feet_of([(170, 102, 40), (170, 272, 40)])
+    g = group(feet, (rect_piece(510, 425),), (default_machine().hoop("RE36b"),), "garment")
+    assert g.count == 1 and 205 <= g.hoopings[0].centre_mm[1] <= 220
+
+
 def test_garment_several_pieces_never_share_a_hooping():
     a = feet_of([(150, 150, 20)], "front")
     b = tuple(Footprint("q0", "back", (160.0, 150.0), 20.0) for _ in range(1))

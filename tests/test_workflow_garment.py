@@ -1,15 +1,17 @@
 """The design workflow on a real Gerber AAMA pattern, from the command line only (no JSON
 edited by hand): import a size, place three patches by target height, move one with edit,
-check flags exactly what fabricate refuses, the fix clears it, fabricate succeeds."""
+check flags exactly what fabricate refuses, the fix clears it, fabricate succeeds with its
+PDF templates, DXF marks and a sheet that says why each hoop; inspect reads the files back."""
 import json
+
+import ezdxf
+import numpy as np
 
 from helpers import EXTERNAL
 from helpers import cli_run as run
 
 TANK = EXTERNAL / "dxf" / "WM_LOOSE_SHAPE_TANK_AAMA.DXF"
 PIECE = "RELAXED TANK FR V2"
-
-
 
 
 def test_tank_workflow(tmp_path):
@@ -48,4 +50,14 @@ def test_tank_workflow(tmp_path):
     for h in doc["hoopings"]:                       # the 1:1 printable templates
         for key in ("template_a4", "template_letter"):
             assert (out / h["files"][key]).read_bytes().startswith(b"%PDF")
+        marks = ezdxf.readfile(out / h["files"]["marks_dxf"]).modelspace()  # and the DXF marks
+        points = [tuple(e.dxf.location)[:2] for e in marks.query("POINT[layer=='MARKS']")]
+        assert np.allclose(points, h["alignment_marks_garment_mm"], atol=1e-3)
+        # inspect reads each machine file back: its stitches lie in the hooping's hoop
+        r = run("inspect", out / h["files"]["embroidery"], "--json")
+        assert r.exit_code == 0 and any(x.startswith(h["hoop"] + " ")
+                                        for x in json.loads(r.output)["hoops"])
+    sheet = (out / "fabrication.md").read_text()
+    assert sheet.count("why this hoop: ") == len(doc["hoopings"])
+    assert "| frame on a stitched patch | never |" in sheet
     assert run("layout", design, "-o", tmp_path / "layout.pdf").exit_code == 0

@@ -44,9 +44,10 @@ def _number(v: float):
 def check(design, as_json, blank_margin_mm, **limits):
     """Check DESIGN: diameters in the model's range, patches inside their pieces with an edge
     margin, spacing between patches, triangle sides and gaps the machine can form, hoop fit,
-    and that every patch can be hooped where it lies (the frame on the piece, or on its uncut
-    blank: the design's blank_margin_mm). Each violation names its patch and a fix. Every
-    error is something fabricate refuses or the model cannot predict. Exit code 0 when clean,
+    that every patch can be hooped where it lies (the frame on the piece, or on its uncut
+    blank: the design's blank_margin_mm), and pairs of patches whose hoop frames must press
+    one another (a warning). Each violation names its patch and a fix. Every error is
+    something fabricate refuses or the model cannot predict. Exit code 0 when clean,
     1 when there are violations, 2 for bad input."""
     lim = CheckLimits(**limits)
     if blank_margin_mm is not None and blank_margin_mm < 0:

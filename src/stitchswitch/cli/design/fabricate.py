@@ -76,9 +76,13 @@ def fabricate_cmd(design_path, machine, machines_file, hoop, fmt, blank_margin_m
                      f"{h.hoop}{turn}: {', '.join(p.id for p in h.patches)}; "
                      f"{h.stitches} stitches, {h.time_min:.1f} min -> {h.files.embroidery}"))
     conf = doc.conflicts
-    rows.append(("conflicts", "none" if not conf else
-                 f"{len(conf)} unavoidable (see fabrication.md)" if doc.order_exact else
-                 f"{len(conf)} (heuristic order; see fabrication.md)"))
+    g = doc.grouping
+    rows.append(("conflicts", ("none" if not conf else
+                 f"{len(conf)}, the fewest possible (see fabrication.md)" if g.conflicts_exact
+                 else f"{len(conf)}, the fewest found (see fabrication.md)")
+                 + ("" if g.fewest_hoopings is None or g.fewest_hoopings == res.grouping.count
+                    else f"; {g.fewest_hoopings} hooping(s) would leave "
+                         f"{g.fewest_hoopings_conflicts}")))
     rows.append(("total", f"{doc.totals.stitches} stitches, {doc.totals.time_min:.1f} "
                           "min of stitching"))
     rows.append(("output", f"{outdir} ({len(res.files)} files)"))

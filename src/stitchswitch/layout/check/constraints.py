@@ -17,6 +17,7 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.check.rules import (
     edge,
     features,
+    frame_conflict,
     geometry,
     hoop,
     hoopable,
@@ -28,7 +29,7 @@ from stitchswitch.layout.check.violation import Violation
 __all__ = ["Violation", "CheckLimits", "check_design", "RULES"]
 
 #: the rule modules of ``stitchswitch.layout.check.rules``, in report order
-RULES = (model_range, geometry, edge, spacing, features, hoop, hoopable)
+RULES = (model_range, geometry, edge, spacing, features, hoop, hoopable, frame_conflict)
 
 
 @dataclass(frozen=True)

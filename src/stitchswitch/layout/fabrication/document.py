@@ -39,7 +39,9 @@ class StretchInfo:
 
 @dataclass(frozen=True)
 class GroupingInfo:
-    """How the patches were grouped into hoopings. ``spacing_mm`` only in free mode."""
+    """How the patches were grouped into hoopings. ``spacing_mm`` only in free mode; the
+    ``fewest_hoopings*`` and ``conflicts_exact`` only in garment mode (hoopings and order
+    planned for the fewest frame conflicts first: ``grouping.conflict_plan``)."""
 
     method: str
     status: str
@@ -53,6 +55,9 @@ class GroupingInfo:
     time_limit_s: float | None
     note: str
     spacing_mm: float | None = None
+    fewest_hoopings: int | None = None           # garment: the set cover's count
+    fewest_hoopings_conflicts: int | None = None  # the frame conflicts that grouping leaves
+    conflicts_exact: bool = False                 # the plan's conflicts proven fewest
 
     def as_dict(self) -> dict:
         out = {"method": self.method, "status": self.status, "optimal": self.optimal,
@@ -63,6 +68,10 @@ class GroupingInfo:
                "note": self.note}
         if self.spacing_mm is not None:
             out["spacing_mm"] = self.spacing_mm
+        if self.fewest_hoopings is not None:
+            out.update(fewest_hoopings=self.fewest_hoopings,
+                       fewest_hoopings_conflicts=self.fewest_hoopings_conflicts,
+                       conflicts_exact=self.conflicts_exact)
         return out
 
 
@@ -82,6 +91,7 @@ class HoopingFiles:
     svg: str
     template_a4: str | None = None       # garment mode: 1:1 printable templates (PDF)
     template_letter: str | None = None
+    marks_dxf: str | None = None         # garment mode: the same marks as DXF (relaxed mm)
 
 
 @dataclass(frozen=True)
@@ -138,12 +148,13 @@ class HoopingDoc:
     time_min: float
     gap_crossings: int = 0          # thread laid over unstitched fabric (the stitch audit)
     gap_crossing_mm: float = 0.0
+    hoop_reason: str = ""           # why this hoop, in plain words (``hoop_reason``)
 
     def as_dict(self) -> dict:
         d = {"number": self.number, "hoop": self.hoop, "field_mm": list(self.field_mm),
              "margin_mm": self.margin_mm, "frame_width_mm": self.frame_width_mm,
              "jef_code": self.jef_code, "orientation_deg": self.orientation_deg,
-             "piece": self.piece}
+             "piece": self.piece, "hoop_reason": self.hoop_reason}
         if self.piece is not None:
             d.update(centre_stretched_mm=list(self.centre_stretched_mm),
                      centre_garment_mm=list(self.centre_garment_mm),

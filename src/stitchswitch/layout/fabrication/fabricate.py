@@ -10,7 +10,8 @@
 4. per hooping: the stitch plan (``hoop_plan``, patch geometry from
    ``patch_design.geometry_for``), the embroidery file through the export registry
    (``export.encode``, with the hooping's hoop for the JEF code) and the layout as PNG and SVG
-   (``hoop_layout_plot``);
+   (``hoop_layout_plot``); in garment mode the 1:1 templates (PDF, A4 and Letter: ``template``)
+   and the same marks as DXF (``marks_dxf``);
 5. an overview (PNG, SVG), ``fabrication.json``, and the sheet as ``fabrication.md`` and
    ``fabrication.html`` (``fabrication_sheet``).
 
@@ -49,7 +50,9 @@ from stitchswitch.layout.fabrication.document import (
 from stitchswitch.layout.fabrication.grouping.footprints import stretch
 from stitchswitch.layout.fabrication.grouping.group import MODES, group
 from stitchswitch.layout.fabrication.grouping.result import Grouping
+from stitchswitch.layout.fabrication.hoop_reason import hoop_reason
 from stitchswitch.layout.fabrication.layout_plot import alignment_marks, hooping_figure, overview_figure
+from stitchswitch.layout.fabrication.marks_dxf import marks_dxf
 from stitchswitch.layout.fabrication.order import StitchingOrder, order_hoopings
 from stitchswitch.layout.fabrication.plan import audit_hooping, plan_hooping
 from stitchswitch.layout.fabrication.sheet import html_page, markdown
@@ -203,13 +206,15 @@ def fabricate(design, outdir, options: FabricateOptions = FabricateOptions(),
         stem = f"hoop{k:0{width}d}"
         hplan = plan_hooping(h, specs, cached, prm)
         names = {"embroidery": f"{stem}.{fmt.name}", "png": f"{stem}.png", "svg": f"{stem}.svg"}
-        if h.piece is not None:                 # garment mode: the 1:1 templates
+        if h.piece is not None:                 # garment mode: 1:1 templates and DXF marks
             outline = design.piece(h.piece).outline_mm
+            mine = [specs[p] for p in h.patch_ids]
             for paper in PAPERS:
                 name = f"{stem}-template-{paper}.pdf"
                 names[f"template_{paper}"] = name
-                files[name] = template_pdf(k, h, outline, [specs[p] for p in h.patch_ids],
-                                           eta, paper)
+                files[name] = template_pdf(k, h, outline, mine, eta, paper)
+            names["marks_dxf"] = f"{stem}-marks.dxf"
+            files[names["marks_dxf"]] = marks_dxf(k, h, outline, mine, eta)
         files[names["embroidery"]] = export.encode(hplan.plan, fmt.name, h.hoop,
                                                    label=_label(design, stem))
         threads = audit_hooping(hplan, h, options.resolution_mm, prm.min_stitch_mm)
@@ -218,7 +223,8 @@ def fabricate(design, outdir, options: FabricateOptions = FabricateOptions(),
         files[names["png"]], files[names["svg"]] = figs["png"], figs["svg"]
         images[names["png"]] = files[names["png"]]
         stitched |= set(h.patch_ids)
-        doc_hoops.append(_hooping_doc(k, h, hplan, specs, eta, names, threads))
+        doc_hoops.append(_hooping_doc(k, h, hplan, specs, eta, names, threads,
+                                      hoop_reason(h, hoops, feet, pieces)))
     for kind, data in overview_figure(order.hoopings, feet, pieces).items():
         files[f"overview.{kind}"] = data
     images["overview.png"] = files["overview.png"]
@@ -243,7 +249,7 @@ def _label(design, stem: str) -> str:
     return f"{base} {stem}"
 
 
-def _hooping_doc(k, h, hplan, specs, eta, names, threads) -> HoopingDoc:
+def _hooping_doc(k, h, hplan, specs, eta, names, threads, reason) -> HoopingDoc:
     plan = hplan.plan
     garment = h.piece is not None
     marks = h.to_piece(np.array(alignment_marks(h.hoop))) / eta if garment else None
@@ -264,7 +270,7 @@ def _hooping_doc(k, h, hplan, specs, eta, names, threads) -> HoopingDoc:
         stitches=plan.stitch_count, trims=plan.trim_count, jumps=plan.jump_count,
         colour_changes=plan.color_changes, thread_length_m=_r(plan.thread_length_mm / 1000),
         time_min=_r(plan.sewing_time_min, 2), gap_crossings=threads.gap_crossings,
-        gap_crossing_mm=_r(threads.gap_crossing_mm))
+        gap_crossing_mm=_r(threads.gap_crossing_mm), hoop_reason=reason)
 
 
 def _doc(design, machine, fmt, options, eta, grouping, order, doc_hoops) -> FabricationDoc:
@@ -276,7 +282,9 @@ def _doc(design, machine, fmt, options, eta, grouping, order, doc_hoops) -> Fabr
         hoopings_lower_bound=rep.hoopings_lower_bound,
         first_fit_decreasing_hoopings=rep.greedy_hoopings, candidates=rep.candidates,
         time_limit_s=options.time_limit_s, note=rep.note,
-        spacing_mm=_r(options.spacing_mm) if grouping.mode == "free" else None)
+        spacing_mm=_r(options.spacing_mm) if grouping.mode == "free" else None,
+        fewest_hoopings=rep.fewest_hoopings, fewest_hoopings_conflicts=rep.fewest_hoopings_conflicts,
+        conflicts_exact=bool(rep.conflicts_exact))
     return FabricationDoc(
         generator=GENERATOR, version=__version__, design=_design_info(design),
         mode=grouping.mode,

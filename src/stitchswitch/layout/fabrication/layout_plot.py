@@ -99,6 +99,24 @@ def _disc(ax, xy, d, **kw):
     ax.add_patch(Circle(xy, d / 2, **kw))
 
 
+def _hooping_legend(ax, garment: bool) -> None:
+    """A legend of the figure's marks, below the axes (the sheet's legend says more)."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+    handles = [Patch(fc="0.6", alpha=0.35, ec="0.4", label="hoop frame (clamps)"),
+               Line2D([], [], color="black", lw=1.0, label="sewing field"),
+               Line2D([], [], color="0.3", lw=0.6, ls="--", label="margin (no stitches)"),
+               Line2D([], [], color="#c0392b", marker="+", ls="none", markersize=9,
+                      label="centre and side marks"),
+               Patch(fc="#7f8c99", label="n. id: patches, sewing order")]
+    if garment:
+        handles += [Patch(fc="0.7", ec="0.4", label="stitched earlier"),
+                    Line2D([], [], color="0.45", ls=":", label="stitched later"),
+                    Patch(fc="#f5b7b1", ec="#c0392b", label="frame on a stitched patch")]
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.09), ncol=3,
+              fontsize=6, frameon=False)
+
+
 def hooping_figure(k: int, total: int, hooping, hplan, specs, feet, pieces, stitched_before,
                    conflict_ids, formats=("png", "svg")) -> dict[str, bytes]:
     """The layout of hooping ``k`` (1-based) of ``total``: format -> bytes (PNG, SVG)."""
@@ -108,7 +126,7 @@ def hooping_figure(k: int, total: int, hooping, hplan, specs, feet, pieces, stit
     hoop = hooping.hoop
     ow, oh = hoop.width_mm + 2 * hoop.frame_width_mm, hoop.height_mm + 2 * hoop.frame_width_mm
     with matplotlib.rc_context({"svg.hashsalt": "stitchswitch", "svg.fonttype": "none"}):
-        fig, ax = plt.subplots(figsize=(6.0, 6.0 * min(1.6, max(0.6, oh / ow))))
+        fig, ax = plt.subplots(figsize=(6.4, 1.2 + 6.0 * min(1.6, max(0.6, oh / ow))))
         if hooping.piece is not None:
             piece = next(p for p in pieces if p.name == hooping.piece)
             outline = hooping.to_hoop(piece.outline_mm)
@@ -135,6 +153,7 @@ def hooping_figure(k: int, total: int, hooping, hplan, specs, feet, pieces, stit
                         fontsize=7, zorder=5)
         ax.add_collection(PolyCollection(polys, facecolors=colours, edgecolors="none", zorder=4))
         _marks(ax, hoop)
+        _hooping_legend(ax, hooping.piece is not None)
         pad = 0.04 * max(ow, oh)
         ax.set_xlim(-ow / 2 - pad, ow / 2 + pad)
         ax.set_ylim(-oh / 2 - pad, oh / 2 + pad)
@@ -181,6 +200,8 @@ def overview_figure(hoopings, feet, pieces, formats=("png", "svg")) -> dict[str,
                     ax.annotate(str(k), h.centre_mm, color=col, fontsize=11, ha="center",
                                 va="center", weight="bold")
                 ax.set_title(f"piece {panel.name} (stretched)", fontsize=9)
+                ax.set_xlabel("x (mm, stretched piece)", fontsize=8)
+                ax.set_ylabel("y (mm, stretched piece)", fontsize=8)
             else:
                 k = panels.index(panel) + 1
                 _frame(ax, panel.hoop)
@@ -189,9 +210,14 @@ def overview_figure(hoopings, feet, pieces, formats=("png", "svg")) -> dict[str,
                     _disc(ax, (x, y), d, fc="0.55", ec="0.3", lw=0.4)
                     ax.annotate(pid, (x, y), ha="center", va="center", fontsize=6)
                 ax.set_title(f"{k}: {panel.hoop}", fontsize=9)
+                ax.set_xlabel("x (mm, hoop)", fontsize=8)
+                ax.set_ylabel("y (mm, hoop)", fontsize=8)
             ax.set_aspect("equal")
             ax.autoscale_view()
             ax.tick_params(labelsize=7)
-        fig.suptitle(f"{len(hoopings)} hooping(s)", fontsize=10)
+        fig.suptitle(f"{len(hoopings)} hooping(s)" + (
+            ": numbered fields (solid) and frames (dotted) in stitching order; grey: patches"
+            if garment else ": patches (grey) in each hoop's field, frame band around it"),
+            fontsize=9)
         fig.tight_layout()
         return _save(fig, formats)

@@ -12,8 +12,9 @@ such relations makes some conflict unavoidable.
   lexicographically first (hoopings numbered in their grouping order) is taken, so the result
   is deterministic and the reported conflicts are unavoidable for this grouping;
 * more: greedy, each step the hooping with the fewest new conflicts, ties to the one whose own
-  patches fewer remaining frames touch, then the lowest number; the conflicts are then minimal
-  only heuristically (``exact`` is False).
+  patches fewer remaining frames touch, then the lowest number, or the order given when that
+  has fewer conflicts (a plan of ``grouping.conflict_plan`` comes ordered); the conflicts are
+  then minimal only heuristically (``exact`` is False).
 
 Within a hooping the patches are sewn in a short travel order: nearest neighbour from the
 lowest-left patch, improved by 2-opt (``ordering.visiting_order``). Free mode has no conflicts
@@ -106,6 +107,11 @@ def _greedy(w: np.ndarray) -> list[int]:
     return order
 
 
+def _cost(w: np.ndarray, order) -> int:
+    """Conflicts of ``order``: w[a, b] over the pairs with b before a."""
+    return int(sum(w[a, b] for p, a in enumerate(order) for b in order[:p]))
+
+
 def _sew_order(h: Hooping) -> Hooping:
     if len(h.patch_ids) < 2:
         return h
@@ -121,6 +127,8 @@ def order_hoopings(hoopings, feet) -> StitchingOrder:
         len(hoopings), len(hoopings))
     exact = len(hoopings) <= EXACT_MAX
     order = (_exact(w) if exact else _greedy(w)) if w.any() else list(range(len(hoopings)))
+    if not exact and _cost(w, list(range(len(hoopings)))) < _cost(w, order):
+        order = list(range(len(hoopings)))       # the order given (a planned one) is better
     pos = {v: p for p, v in enumerate(order)}
     conflicts = []
     for p, a in enumerate(order):

@@ -2,19 +2,28 @@
 ``FabricationDoc`` that fabrication.json is written from (``layout.fabrication.fabricate`` builds
 it), so the three always agree.
 
-Sections: summary (machine, mode, grouping method, gap, bound), stretching and marking
-instructions (paper, appendix A: 1.7x in both directions over one sheet of water-soluble
-stabilizer, a drawn grid and pins), the hoopings in stitching order with hoop, turn, alignment
-marks, threads (a conductive bobbin where a hooping has conductive triangles), stitch counts and
-estimated times, the frame conflicts that could not be avoided, and the limits of the
-estimates. The HTML page (``files.html_page``) embeds the layout PNGs as data URIs (no external
-resources).
+Sections, in the order they are used in the workshop: a plain summary (what is made, how many
+hoopings, how long), before you start (paper, appendix A: 1.7x in both directions over one
+sheet of water-soluble stabilizer, a drawn grid and pins), what the drawings show (a legend of
+every colour and mark), the hoopings in stitching order, each with why its hoop, numbered steps
+(mark, stretch, hoop which way up, thread, every colour stop, unhoop; ``workshop``), its data
+(hoop, turn, alignment marks, threads, stitch counts, times) and its drawing; the frame
+conflicts with what to do about each; how the hoopings were found (the algorithm's figures, for
+the record); and the limits of the estimates. The HTML page (``files.html_page``) embeds the
+layout PNGs as data URIs (no external resources).
 """
 from __future__ import annotations
 
 from stitchswitch.files.html_page import Figure, ItemList, Paragraph, Section, Table, page
 from stitchswitch.layout.embroidery.jef_palette import sheet_colour_names
 from stitchswitch.layout.fabrication.document import FabricationDoc, HoopingDoc, Thread
+from stitchswitch.layout.fabrication.workshop import (
+    LEGEND,
+    conflict_advice,
+    hooping_steps,
+    method_rows,
+    summary_rows,
+)
 
 
 def _f(v, digits: int = 1) -> str:
@@ -23,26 +32,6 @@ def _f(v, digits: int = 1) -> str:
 
 def _pt(p, digits: int = 1) -> str:
     return f"({_f(p[0], digits)}, {_f(p[1], digits)})"
-
-
-def summary_rows(doc: FabricationDoc, esc=str) -> list[tuple[str, str]]:
-    g, m = doc.grouping, doc.machine
-    gap = "n/a" if g.mip_gap is None else f"{100 * g.mip_gap:.2f} %"
-    rows = [("design", esc(doc.design.file)),
-            ("machine", f"{m.label} ({m.name}, {m.source})"),
-            ("mode", doc.mode), ("format", doc.embroidery_format),
-            ("hoopings", str(len(doc.hoopings))),
-            ("grouping", f"{g.method} ({g.status}); optimal: {'yes' if g.optimal else 'no'}; "
-                         f"gap {gap}"),
-            ("lower bound", f"{g.hoopings_lower_bound} hooping(s)"),
-            ("first-fit decreasing", f"{g.first_fit_decreasing_hoopings} hooping(s)"),
-            ("note", g.note),
-            ("stitches", f"{doc.totals.stitches}"),
-            ("sewing time", f"{_f(doc.totals.time_min)} min at "
-                            f"{m.stitches_per_minute:g} stitches/min (stitching only)")]
-    if doc.mode == "free":
-        rows.insert(5, ("spacing", f"{g.spacing_mm:g} mm between patches"))
-    return rows
 
 
 _MARKDOWN_SPECIAL = set("\\`*_[]<>#!|~&")
@@ -66,7 +55,9 @@ def _thread_text(t: Thread, esc=str, colour: str | None = None) -> str:
 
 def _hooping_lines(h: HoopingDoc, mode: str, esc=str) -> list[str]:
     turn = "turned 90 degrees" if h.orientation_deg == 90 else "normal position"
-    lines = [f"- hoop **{h.hoop}** ({h.field_mm[0]:g} x {h.field_mm[1]:g} mm field, {turn})"]
+    lines = [f"- hoop **{h.hoop}** ({h.field_mm[0]:g} x {h.field_mm[1]:g} mm field, {turn}); "
+             f"why this hoop: {esc(h.hoop_reason)}"] if h.hoop_reason else \
+        [f"- hoop **{h.hoop}** ({h.field_mm[0]:g} x {h.field_mm[1]:g} mm field, {turn})"]
     if mode == "garment":
         piece = f"`{h.piece}`" if esc is str else esc(h.piece)
         lines.append(f"- piece {piece}; field centre at {_pt(h.centre_garment_mm)} mm "
@@ -108,24 +99,31 @@ def _order_row(h: HoopingDoc, esc=str) -> tuple[str, ...]:
             str(h.stitches), _f(h.time_min), h.files.embroidery)
 
 
+def _md_table(head, rows) -> list[str]:
+    return (["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+            + ["| " + " | ".join(r) + " |" for r in rows])
+
+
 def markdown(doc: FabricationDoc) -> str:
     esc = md_escape
     out = [f"# Fabrication sheet: {esc(doc.design.file)}", ""]
     out += ["| | |", "|---|---|"] + [f"| {k} | {v} |" for k, v in summary_rows(doc, esc)] + [""]
-    out += ["## Stretching and marking", ""]
+    out += ["## Before you start", ""]
     out += [f"{i}. {s}" for i, s in enumerate(doc.stretch.instructions, start=1)] + [""]
+    out += ["## What the drawings show", ""] + _md_table(("you see", "it means"), LEGEND) + [""]
     out += ["## Hoopings in stitching order", ""]
-    out += ["| " + " | ".join(ORDER_HEAD) + " |", "|" + "---|" * len(ORDER_HEAD)]
-    out += ["| " + " | ".join(_order_row(h, esc)) + " |" for h in doc.hoopings]
+    out += _md_table(ORDER_HEAD, [_order_row(h, esc) for h in doc.hoopings])
     out.append("")
     for h in doc.hoopings:
-        out += [f"### Hooping {h.number}", ""] + _hooping_lines(h, doc.mode, esc) + [""]
-        head, rows = _patch_table(h, doc.mode, esc)
-        out += ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-        out += ["| " + " | ".join(r) + " |" for r in rows]
+        out += [f"### Hooping {h.number}", ""]
+        out += [f"{i}. {s}" for i, s in enumerate(hooping_steps(h, doc, esc), start=1)] + [""]
+        out += _hooping_lines(h, doc.mode, esc) + [""]
+        out += _md_table(*_patch_table(h, doc.mode, esc))
         out += ["", f"![hooping {h.number}]({h.files.png})", ""]
     out += ["## Frame conflicts", ""]
     out += _conflict_lines(doc, esc) + [""]
+    out += ["## How the hoopings were found", ""]
+    out += ["| | |", "|---|---|"] + [f"| {k} | {v} |" for k, v in method_rows(doc)] + [""]
     out += ["## Limits", ""] + [f"- {s}" for s in doc.limits] + [""]
     return "\n".join(out)
 
@@ -136,12 +134,12 @@ def _conflict_lines(doc: FabricationDoc, esc=str) -> list[str]:
         return ["None: every hooping is its own piece of fabric."]
     if not conf:
         return ["None: no hoop frame lands on a patch stitched before it."]
-    how = ("the minimum for this grouping (exact order search)" if doc.order_exact else
-           "minimised heuristically (too many hoopings for the exact search)")
+    how = ("the fewest possible over the hoop positions tried (exhaustive search of hoopings "
+           "and order)" if doc.grouping.conflicts_exact else
+           "the fewest found (a beam search over hoopings and order; not proven the fewest)")
     lines = [f"{len(conf)} place(s) where a frame lands on a patch stitched earlier; this is "
-             f"{how}. Pad these patches (or hoop gently) when setting up the hooping:", ""]
-    lines += [f"- hooping {c.hooping}: the frame lands on patch {esc(c.patch)} (stitched in "
-              f"hooping {c.stitched_in_hooping})" for c in conf]
+             f"{how}. What to do at each:", ""]
+    lines += [f"- {conflict_advice(c, esc)}" for c in conf]
     return lines
 
 
@@ -159,6 +157,7 @@ def html_page(doc: FabricationDoc, images: dict[str, bytes]) -> str:
     for h in doc.hoopings:
         head, rows = _patch_table(h, doc.mode)
         hoopings.append(Section(f"Hooping {h.number}", (
+            ItemList(tuple(s.replace("`", "") for s in hooping_steps(h, doc)), ordered=True),
             ItemList(tuple(_plain(line) for line in _hooping_lines(h, doc.mode))),
             Table(tuple(rows), head=tuple(head)),
             *picture(h.files.png, f"hooping {h.number} layout")), level=3))
@@ -166,13 +165,15 @@ def html_page(doc: FabricationDoc, images: dict[str, bytes]) -> str:
     cls = "warn" if doc.conflicts else "note"
     blocks = (
         Table(tuple(summary_rows(doc)), keys=True),
-        Section("Stretching and marking", (ItemList(doc.stretch.instructions, ordered=True),)),
+        Section("Before you start", (ItemList(doc.stretch.instructions, ordered=True),)),
+        Section("What the drawings show", (Table(LEGEND, head=("you see", "it means")),)),
         Section("Hoopings in stitching order", (
             *picture(doc.overview_png, "overview of the hoopings"),
             Table(tuple(_order_row(h) for h in doc.hoopings), head=ORDER_HEAD), *hoopings)),
         Section("Frame conflicts", (Paragraph(conflicts[0], cls=cls),) + (
             (ItemList(tuple(line[2:] for line in conflicts[2:]), cls=cls),)
             if len(conflicts) > 2 else ())),
+        Section("How the hoopings were found", (Table(tuple(method_rows(doc)), keys=True),)),
         Section("Limits", (ItemList(doc.limits, cls="note"),)),
     )
     return page(f"Fabrication sheet: {doc.design.file}", blocks,

@@ -44,13 +44,25 @@ def held(cx, cy, x, y, r, w, h):
             & (np.abs(y[None, :] - cy[:, None]) <= h / 2 - r[None, :] + TOL_MM))
 
 
+def ring_touches(cx, cy, fw, fh, frame, x, y, r) -> np.ndarray:
+    """(len(cx), n) bool: disc i meets the frame ring of width ``frame`` around a field
+    fw x fh centred at (cx, cy): it meets the outer rectangle and is not inside the field."""
+    dx = np.abs(x[None, :] - cx[:, None])
+    dy = np.abs(y[None, :] - cy[:, None])
+    ow, oh = fw / 2 + frame, fh / 2 + frame
+    ex, ey = np.maximum(dx - ow, 0.0), np.maximum(dy - oh, 0.0)
+    meets_outer = ex * ex + ey * ey < (r[None, :] - TOL_MM) ** 2
+    inside_field = (dx <= fw / 2 - r[None, :] + TOL_MM) & (dy <= fh / 2 - r[None, :] + TOL_MM)
+    return meets_outer & ~inside_field & (frame > 0)
+
+
 def allowed(region, cx, cy, ow, oh) -> np.ndarray:
     """(len(cx),) bool: the outer rectangles ow x oh centred at (cx, cy) lie on ``region``."""
     boxes = shapely.box(cx - ow / 2, cy - oh / 2, cx + ow / 2, cy + oh / 2)
     return np.asarray(shapely.contains(region, boxes), dtype=bool)
 
 
-def _grid(i, x, y, r, hoops, region, step_mm):
+def grid(i, x, y, r, hoops, region, step_mm):
     """Per hoop and orientation that can hold disc i: (k, o, w, h, cx, cy, allowed mask) over
     the 2 mm grid of field centres holding it."""
     for k, hoop in enumerate(hoops):
@@ -68,14 +80,14 @@ def _grid(i, x, y, r, hoops, region, step_mm):
 
 def can_hoop(i, x, y, r, hoops, region, step_mm: float = STEP_MM) -> bool:
     """Whether ``best_placement`` finds a placement (the same grid; stops at the first)."""
-    return any(ok.any() for *_, ok in _grid(i, x, y, r, hoops, region, step_mm))
+    return any(ok.any() for *_, ok in grid(i, x, y, r, hoops, region, step_mm))
 
 
 def best_placement(i, x, y, r, hoops, region, step_mm: float = STEP_MM):
     """The allowed placement holding disc i and the most others: (hoop index, orientation,
     (cx, cy)), or None when no hoop can hold disc i on ``region``."""
     best = None
-    for k, hoop, o, w, h, cx, cy, ok in _grid(i, x, y, r, hoops, region, step_mm):
+    for k, hoop, o, w, h, cx, cy, ok in grid(i, x, y, r, hoops, region, step_mm):
         if not ok.any():
             continue
         cx, cy = cx[ok], cy[ok]
@@ -91,11 +103,17 @@ def _fits_some_hoop(r: float, hoops) -> bool:
     return any(2 * r <= min(h.usable_mm(o)) + TOL_MM for h in hoops for o in h.orientations)
 
 
+def regions(design, eta) -> dict:
+    """Per piece name: the fabric its hoop frames may clamp (``hoop_region``, stretched)."""
+    blank = design.blank_margin_mm
+    return {p.name: hoop_region(np.asarray(p.outline_mm) * eta, blank * eta)
+            for p in design.pieces}
+
+
 def check(design, limits, eta) -> list[Violation]:
     hoops = design_hoops(design)
     blank = design.blank_margin_mm
-    regions = {p.name: hoop_region(np.asarray(p.outline_mm) * eta, blank * eta)
-               for p in design.pieces}
+    regions_ = regions(design, eta)
     out = []
     for patch in design.patches:
         x = np.array([patch.centre_mm[0] * eta])
@@ -103,7 +121,7 @@ def check(design, limits, eta) -> list[Violation]:
         r = np.array([patch.diameter_mm / 2.0])
         if not _fits_some_hoop(float(r[0]), hoops):
             continue                                  # the hoop-fit rule reports it
-        if can_hoop(0, x, y, r, hoops, regions[patch.piece]):
+        if can_hoop(0, x, y, r, hoops, regions_[patch.piece]):
             continue
         frame = max(h.frame_width_mm for h in hoops)
         hint = (f"move the patch inward, hoop the piece as an uncut blank (blank_margin_mm in "

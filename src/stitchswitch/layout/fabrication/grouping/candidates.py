@@ -18,7 +18,8 @@ Enumeration (exact for the sets that can be held, before the piece-edge rule):
    position is chosen in S's feasible box (cx in [max_S(x + r) - W/2, min_S(x - r) + W/2], same
    for y): of a 5 x 5 grid over the box, the positions whose frame ring touches the fewest
    other patches come first, then those nearest the box centre; the first allowed position is
-   kept (and may hold more than S). A set with no allowed position is dropped.
+   kept (and may hold more than S). A set with no allowed position on that grid gets a
+   17 x 17 grid; a set with none there either is dropped.
 3. A patch that no kept placement holds gets a search of its own: a 2 mm grid over every
    position that holds it, for every hoop and orientation; the allowed position holding the
    most patches is added. If there is none the patch cannot be hooped: ``InvalidInputError``.
@@ -38,6 +39,8 @@ from stitchswitch.layout.embroidery.hoop_spec import Hoop
 from stitchswitch.layout.fabrication.grouping import bitsets
 
 TOL_MM = 1e-9
+#: the grids (points per axis) tried in turn over a held set's feasible box
+GRIDS = (5, 17)
 
 
 @dataclass(frozen=True)
@@ -50,6 +53,7 @@ class Candidates:
     holds: np.ndarray           # (m, n) bool
     overlap: np.ndarray         # (m,) patches of the piece under the frame ring, not held
     hoops: tuple[Hoop, ...]
+    touches: np.ndarray | None = None   # (m, n) bool: the patches ``overlap`` counts
 
     def __len__(self) -> int:
         return len(self.hoop_index)
@@ -62,16 +66,8 @@ def _allowed(piece, cx, cy, ow, oh) -> np.ndarray:
     return hoopable.allowed(piece, cx, cy, ow, oh)
 
 
-def ring_overlap(cx, cy, fw, fh, frame, x, y, r) -> np.ndarray:
-    """(len(cx), n) bool: disc i meets the frame ring of width ``frame`` around a field
-    fw x fh centred at (cx, cy): it meets the outer rectangle and is not inside the field."""
-    dx = np.abs(x[None, :] - cx[:, None])
-    dy = np.abs(y[None, :] - cy[:, None])
-    ow, oh = fw / 2 + frame, fh / 2 + frame
-    ex, ey = np.maximum(dx - ow, 0.0), np.maximum(dy - oh, 0.0)
-    meets_outer = ex * ex + ey * ey < (r[None, :] - TOL_MM) ** 2
-    inside_field = (dx <= fw / 2 - r[None, :] + TOL_MM) & (dy <= fh / 2 - r[None, :] + TOL_MM)
-    return meets_outer & ~inside_field & (frame > 0)
+#: the frame-ring test of the check (``hoopable.ring_touches``)
+ring_overlap = hoopable.ring_touches
 
 
 def _variants(hoops):
@@ -83,7 +79,19 @@ def _variants(hoops):
 def _choose_positions(members, x, y, r, hoop, o, piece):
     """For each row of ``members`` (bool (s, n)): an allowed position in its feasible box, or
     NaN. Tries a 5 x 5 grid over the box, fewest frame-ring contacts first, then nearest the
-    box centre."""
+    box centre; the rows with no allowed position on it get a 17 x 17 grid (a box of a few
+    hundred mm whose allowed strip is narrower than the 5 x 5 grid's step)."""
+    out = _positions_on_grid(members, x, y, r, hoop, o, piece, GRIDS[0])
+    for n_grid in GRIDS[1:]:
+        miss = np.flatnonzero(~np.isfinite(out[:, 0]))
+        if not len(miss):
+            break
+        out[miss] = _positions_on_grid(members[miss], x, y, r, hoop, o, piece, n_grid)
+    return out
+
+
+def _positions_on_grid(members, x, y, r, hoop, o, piece, n_grid):
+    """``_choose_positions`` on one n_grid x n_grid grid over each feasible box."""
     w, h = hoop.usable_mm(o)
     fw, fh = hoop.field_mm(o)
     ow, oh = hoop.outer_mm(o)
@@ -92,7 +100,7 @@ def _choose_positions(members, x, y, r, hoop, o, piece):
     hi_x = np.nanmin(big * (x - r), axis=1) + w / 2
     lo_y = np.nanmax(big * (y + r), axis=1) - h / 2
     hi_y = np.nanmin(big * (y - r), axis=1) + h / 2
-    t = np.linspace(0.0, 1.0, 5)
+    t = np.linspace(0.0, 1.0, n_grid)
     a, b = (g.ravel() for g in np.meshgrid(t, t))
     cx = lo_x[:, None] + a[None, :] * (hi_x - lo_x)[:, None]          # (s, 25)
     cy = lo_y[:, None] + b[None, :] * (hi_y - lo_y)[:, None]
@@ -195,7 +203,7 @@ def _holds_of(rows, x, y, r, hoops, piece_of, n):
 
 def _assemble(rows, x, y, r, hoops, piece_of, n) -> Candidates:
     holds = np.zeros((len(rows), n), dtype=bool)
-    overlap = np.zeros(len(rows), dtype=int)
+    touches = np.zeros((len(rows), n), dtype=bool)
     for j, (k, o, cx, cy, pi) in enumerate(rows):
         hoop = hoops[k]
         w, h = hoop.usable_mm(o)
@@ -203,8 +211,8 @@ def _assemble(rows, x, y, r, hoops, piece_of, n) -> Candidates:
         same = piece_of == pi
         c1, c2 = np.array([cx]), np.array([cy])
         holds[j] = _held(c1, c2, x, y, r, w, h)[0] & same
-        overlap[j] = int((ring_overlap(c1, c2, fw, fh, hoop.frame_width_mm, x, y, r)[0]
-                          & same & ~holds[j]).sum())
+        touches[j] = (ring_overlap(c1, c2, fw, fh, hoop.frame_width_mm, x, y, r)[0]
+                      & same & ~holds[j])
     # one row per distinct (hoop, orientation, piece, held set): the first found is kept
     key = np.column_stack([np.array([rw[0] for rw in rows]), np.array([rw[1] for rw in rows]),
                            np.array([rw[4] for rw in rows]), bitsets.pack(holds).view(np.int64)]) \
@@ -216,4 +224,5 @@ def _assemble(rows, x, y, r, hoops, piece_of, n) -> Candidates:
                       np.array([[rows[j][2], rows[j][3]] for j in keep],
                                dtype=float).reshape(-1, 2),
                       np.array([rows[j][4] for j in keep], dtype=int),
-                      holds[keep], overlap[keep], tuple(hoops))
+                      holds[keep], touches[keep].sum(axis=1).astype(int), tuple(hoops),
+                      touches[keep])

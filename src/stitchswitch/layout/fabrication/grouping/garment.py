@@ -26,7 +26,7 @@ import time
 
 import numpy as np
 
-from stitchswitch.layout.fabrication.grouping import candidates, greedy
+from stitchswitch.layout.fabrication.grouping import candidates, conflict_plan, greedy
 from stitchswitch.layout.fabrication.grouping.footprints import arrays
 from stitchswitch.layout.fabrication.grouping.mip import solve_cover
 from stitchswitch.layout.fabrication.grouping.result import Grouping, Hooping, SolveReport
@@ -79,8 +79,58 @@ def _hoopings(cands, chosen, feet) -> tuple[Hooping, ...]:
                                              round(hp.centre_mm[0], 6), hp.hoop.name)))
 
 
-def group_garment(feet, pieces, hoops, time_limit_s: float | None = None) -> Grouping:
-    """Hoopings for footprints on stretched pieces (see the module docstring)."""
+def _planned(cands, plan_steps, feet) -> tuple[Hooping, ...]:
+    """Hoopings in stitching order from ``(candidate, patch indices)`` steps."""
+    c_xy, _ = arrays(feet)
+    out = []
+    for c, members in plan_steps:
+        hoop, o = cands.hoops[cands.hoop_index[c]], int(cands.orientation_deg[c])
+        base = Hooping(hoop, o, (), (), feet[members[0]].piece,
+                       (float(cands.centre_mm[c, 0]), float(cands.centre_mm[c, 1])))
+        out.append(base.with_patches([feet[i].id for i in members],
+                                     base.to_hoop(c_xy[list(members)])))
+    return tuple(out)
+
+
+def _plan_key(cands, steps, conflicts) -> tuple:
+    chosen = [c for c, _ in steps]
+    return (conflicts, *_key(cands, chosen))
+
+
+def _conflict_plan(cands, feet, chosen):
+    """The plan with the fewest frame conflicts, then hoopings (``conflict_plan``), per piece;
+    the fewest-hoopings grouping ``chosen``, ordered the same way, competes (a beam search may
+    miss it). Returns (steps, conflicts, exact, conflicts of the fewest-hoopings plan)."""
+    rank = _rank(cands)
+    piece_of = np.array([cands.piece_index[np.flatnonzero(cands.holds[:, i])[0]]
+                         for i in range(len(feet))])
+    steps, total, exact, base_total = [], 0, True, 0
+    mine = np.zeros(len(cands), dtype=bool)
+    mine[list(chosen)] = True
+    for pi in np.unique(piece_of):
+        idx = np.flatnonzero(piece_of == pi)
+        rows = cands.piece_index == pi
+        full = conflict_plan.plan_piece(cands.holds & rows[:, None], cands.touches, rank, idx)
+        # the fewest-hoopings grouping: at most 2^k states for its k placements
+        k = int((rows & mine).sum())
+        base = conflict_plan.plan_piece(cands.holds & (rows & mine)[:, None], cands.touches,
+                                        rank, idx, exact_max=64 if k <= 14 else 0)
+        base_total += base.conflicts
+        best = full
+        if _plan_key(cands, base.steps, base.conflicts) < _plan_key(cands, full.steps,
+                                                                     full.conflicts):
+            best = base
+        steps += list(best.steps)
+        total += best.conflicts
+        exact &= full.exact
+    return tuple(steps), total, exact, base_total
+
+
+def group_garment(feet, pieces, hoops, time_limit_s: float | None = None,
+                  avoid_conflicts: bool = True) -> Grouping:
+    """Hoopings for footprints on stretched ``pieces`` (see the module docstring); with
+    ``avoid_conflicts`` (the default) the hoopings and their order are chosen for the fewest
+    frame conflicts first (``conflict_plan``), else for the fewest hoopings alone."""
     t0 = time.perf_counter()
     cands = candidates.generate(tuple(feet), tuple(pieces), tuple(hoops))
     n = len(feet)
@@ -107,9 +157,17 @@ def group_garment(feet, pieces, hoops, time_limit_s: float | None = None) -> Gro
     else:
         note = (f"HiGHS stopped ({sol.status}) without a solution better than the greedy "
                 f"methods'; the {best_name} solution is used")
-    hoopings = _hoopings(cands, chosen, feet)
+    fewest = len(chosen)
+    conflicts = base_conflicts = None
+    exact = False
+    if avoid_conflicts:
+        steps, conflicts, exact, base_conflicts = _conflict_plan(cands, feet, chosen)
+        hoopings = _planned(cands, steps, feet)
+    else:
+        hoopings = _hoopings(cands, chosen, feet)
     report = SolveReport("garment", "mip" if use_mip else "greedy-fallback", sol.status,
                          bool(sol.optimal and use_mip), sol.mip_gap if use_mip else None,
                          bound, ffd_count, len(cands), time.perf_counter() - t0, time_limit_s,
-                         note)
+                         note, fewest_hoopings=fewest, conflicts=conflicts,
+                         conflicts_exact=exact, fewest_hoopings_conflicts=base_conflicts)
     return Grouping("garment", hoopings, report)

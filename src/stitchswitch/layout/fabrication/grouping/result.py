@@ -51,7 +51,11 @@ class SolveReport:
     ``mip_gap``: HiGHS's relative gap (None if it has no solution); ``hoopings_lower_bound``: a
     proven lower bound on the number of hoopings (garment mode: from HiGHS's dual bound over
     the candidates; free mode: the geometric bound, see ``free``); ``greedy_hoopings``:
-    first-fit-decreasing on the same problem; ``solve_s``: wall time of the whole grouping."""
+    first-fit-decreasing on the same problem; ``solve_s``: wall time of the whole grouping.
+    Garment mode, conflicts avoided (``grouping.conflict_plan``): ``fewest_hoopings`` is the
+    set cover's count, ``fewest_hoopings_conflicts`` the frame conflicts that grouping leaves
+    in its best order, ``conflicts`` those of the plan used (proven fewest over the candidate
+    placements when ``conflicts_exact``); all None otherwise."""
     mode: str
     method: str
     status: str
@@ -63,6 +67,10 @@ class SolveReport:
     solve_s: float
     time_limit_s: float | None
     note: str = ""
+    fewest_hoopings: int | None = None          # garment: the set cover's count (no conflicts
+    conflicts: int | None = None                # considered); the plan's frame conflicts;
+    conflicts_exact: bool = False               # proven fewest over the candidates;
+    fewest_hoopings_conflicts: int | None = None  # conflicts of the fewest-hoopings grouping
 
 
 @dataclass(frozen=True)
