@@ -3,6 +3,7 @@ per hooping the steps in order with the colour stops and why its hoop, the algor
 only at the end, and the same content in Markdown, HTML and fabrication.json."""
 import json
 
+from stitchswitch.layout.embroidery.jef_palette import sheet_colour_names
 from test_cli_fabricate import SMALL, patch, write_design
 
 from helpers import cli_run as run
@@ -47,12 +48,15 @@ def test_colour_stops_say_what_to_do(tmp_path):
     assert h["colour_changes"] == 1
     part = md.split(f"### Hooping {h['number']}")[1].split("### Hooping")[0]
     steps = [line for line in part.splitlines() if line[:1].isdigit()]
+    names = sheet_colour_names([t["colour"] for t in h["threads"]], h["files"]["embroidery"])
     top = [t for t in h["threads"] if t["role"] == "top"][0]
-    assert any(s.endswith(f"Thread {top['colour']} on top, a normal bobbin in; the machine "
+    assert any(s.endswith(f"Thread {names[0]} on top, a normal bobbin in; the machine "
                           f"sews {', '.join(top['patches'])}.") for s in steps)
     stop = [s for s in steps if "Colour stop 1:" in s]
     assert len(stop) == 1 and "put the conductive bobbin in" in stop[0]
-    assert "the machine then sews a in #b0b0b0 (conductive thread)" in stop[0]
+    assert f"top thread {names[1]}; the machine then sews a (conductive thread)" in stop[0]
+    if h["files"]["embroidery"].endswith(".jef"):          # the name the 550E shows
+        assert "Pale Sky, Janome 216" in stop[0]
     assert not any("Colour stop 2" in s for s in steps)
     assert "When the file ends: put the normal bobbin back" in part
 

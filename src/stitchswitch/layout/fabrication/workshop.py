@@ -10,6 +10,7 @@ the reason for its hoop (``HoopingDoc.hoop_reason``), what to do about each fram
 """
 from __future__ import annotations
 
+from stitchswitch.layout.embroidery.jef_palette import sheet_colour_names
 from stitchswitch.layout.fabrication.document import Conflict, FabricationDoc, HoopingDoc
 
 __all__ = ["LEGEND", "summary_rows", "method_rows", "orientation_text", "colour_stops",
@@ -109,29 +110,32 @@ def orientation_text(h: HoopingDoc) -> str:
     return "straight: the pattern's up (+y) pointing away from you and its +x to your right"
 
 
-def _colour(t) -> str:
-    return f"{t.colour} ({'conductive' if t.role == 'conductive' else 'top'} thread)"
+def _role(t) -> str:
+    return "conductive" if t.role == "conductive" else "top"
 
 
 def colour_stops(h: HoopingDoc, esc=str) -> list[str]:
-    """What to do before sewing and at every colour stop of the hooping's file, in order."""
+    """What to do before sewing and at every colour stop of the hooping's file, in order; each
+    thread named as the sheet names it (for a JEF, the palette thread the machine shows)."""
     threads = h.threads
+    names = sheet_colour_names([t.colour for t in threads], h.files.embroidery)
     out = []
     first = threads[0]
     bobbin = ("the conductive bobbin in" if first.role == "conductive" else "a normal bobbin in")
-    out.append(f"Thread {first.colour} on top, {bobbin}; the machine sews "
+    out.append(f"Thread {names[0]} on top, {bobbin}; the machine sews "
                f"{', '.join(map(esc, first.patches))}.")
     for k, (prev, nxt) in enumerate(zip(threads, threads[1:]), start=1):
+        name = names[k]
         if nxt.role == "conductive" and prev.role != "conductive":
             action = ("take the normal bobbin out and put the conductive bobbin in (the paper "
                       f"sews conductive regions with conductive thread in the bobbin); top "
-                      f"thread {nxt.colour}")
+                      f"thread {name}")
         elif prev.role == "conductive" and nxt.role != "conductive":
-            action = f"put the normal bobbin back; top thread {nxt.colour}"
+            action = f"put the normal bobbin back; top thread {name}"
         else:
-            action = f"change the top thread to {nxt.colour}"
+            action = f"change the top thread to {name}"
         out.append(f"Colour stop {k}: {action}; the machine then sews "
-                   f"{', '.join(map(esc, nxt.patches))} in {_colour(nxt)}.")
+                   f"{', '.join(map(esc, nxt.patches))} ({_role(nxt)} thread).")
     last = threads[-1]
     if last.role == "conductive":
         out.append("When the file ends: put the normal bobbin back for the next hooping.")
