@@ -7,7 +7,8 @@
 * ``sheet``: the fabrication sheet (Markdown, HTML), its plain-language parts in ``workshop``
   (legend, steps, colour stops, conflict advice) and ``hoop_reason`` (why each hooping's hoop);
   ``layout_plot``: the hooping figures; ``template``: the 1:1 printable templates;
-  ``marks_dxf``: the same marks as DXF.
+  ``marks_dxf``: the same marks as DXF; ``hoop_outline``: where the hoop lies on the relaxed
+  piece, the geometry both draw.
 
 The top of ``layout``: it imports ``embroidery``, ``garment`` and ``check``.
 """

@@ -24,17 +24,13 @@ import io
 
 import numpy as np
 
-from stitchswitch.layout.fabrication.layout_plot import alignment_marks
+from stitchswitch.layout.fabrication.hoop_outline import relaxed_outline
 
 __all__ = ["LAYERS", "marks_dxf"]
 
 #: layer name -> AutoCAD colour index
 LAYERS = {"PIECE": 8, "HOOP_FIELD": 5, "HOOP_FRAME": 9, "MARKS": 1, "PATCHES": 3, "LABELS": 7}
 _MARK_NAMES = ("centre", "right", "top", "left", "bottom")
-
-
-def _rect(w, h) -> np.ndarray:
-    return np.array([[-w / 2, -h / 2], [w / 2, -h / 2], [w / 2, h / 2], [-w / 2, h / 2]])
 
 
 def _points(a) -> list[tuple[float, float]]:
@@ -48,10 +44,8 @@ def marks_dxf(number: int, hooping, outline_mm, patches, eta: float) -> bytes:
 
     hoop = hooping.hoop
     fw, fh = hoop.width_mm, hoop.height_mm
-    frame = hoop.frame_width_mm
-    field = hooping.to_piece(_rect(fw, fh)) / eta
-    outer = hooping.to_piece(_rect(fw + 2 * frame, fh + 2 * frame)) / eta
-    marks = hooping.to_piece(np.array(alignment_marks(hoop))) / eta
+    field, outer, marks = relaxed_outline(hooping, eta)
+    field, outer = field[:-1], outer[:-1]           # closed by the polyline flag
     arm = 0.06 * min(fw, fh) / eta
     text_h = max(2.0, 0.02 * min(fw, fh) / eta)
 

@@ -16,7 +16,8 @@ import math
 
 import numpy as np
 
-from stitchswitch.layout.fabrication.layout_plot import _pyplot, alignment_marks
+from stitchswitch.layout.fabrication.hoop_outline import relaxed_outline
+from stitchswitch.layout.fabrication.layout_plot import _pyplot
 
 __all__ = ["PAPERS", "template_pdf"]
 
@@ -24,11 +25,6 @@ __all__ = ["PAPERS", "template_pdf"]
 PAPERS = {"a4": (210.0, 297.0), "letter": (215.9, 279.4)}
 MARGIN_MM = 10.0
 CALIBRATION_MM = 50.0
-
-
-def _rect(w, h):
-    return np.array([[-w / 2, -h / 2], [w / 2, -h / 2], [w / 2, h / 2], [-w / 2, h / 2],
-                     [-w / 2, -h / 2]])
 
 
 def template_pdf(number: int, hooping, outline_mm, patches, eta: float, paper: str) -> bytes:
@@ -42,10 +38,7 @@ def template_pdf(number: int, hooping, outline_mm, patches, eta: float, paper: s
     pw, ph = PAPERS[paper]
     hoop = hooping.hoop
     fw, fh = hoop.width_mm, hoop.height_mm
-    frame = hoop.frame_width_mm
-    field = hooping.to_piece(_rect(fw, fh)) / eta
-    outer = hooping.to_piece(_rect(fw + 2 * frame, fh + 2 * frame)) / eta
-    marks = hooping.to_piece(np.array(alignment_marks(hoop))) / eta
+    field, outer, marks = relaxed_outline(hooping, eta)
     lo, hi = outer.min(axis=0) - MARGIN_MM, outer.max(axis=0) + MARGIN_MM
     tw, th = pw - 2 * MARGIN_MM, ph - 2 * MARGIN_MM
     cols, rows = math.ceil((hi[0] - lo[0]) / tw), math.ceil((hi[1] - lo[1]) / th)
