@@ -148,3 +148,22 @@ def test_unavoidable_conflict_named_with_what_to_do(tmp_path):
     second = md.split("### Hooping 2")[1]
     assert f"Pad before clamping: the frame lands on {c['patch']} (stitched in hooping 1)." \
         in second
+
+
+def test_small_pieces_are_warned_on_the_sheet(tmp_path):
+    """Patch b (d 20, p 0.7) tessellates with pieces under 1 mm^2: its hooping counts them and
+    the sheet warns; a d 40 patch has none and gets no warning."""
+    from stitchswitch.layout.embroidery.patch_geometry import make_patch
+    from stitchswitch.layout.embroidery.stitches import SMALL_PIECE_AREA_MM2
+
+    expected = int((make_patch(20, 0.7, 5.0).areas_mm2 < SMALL_PIECE_AREA_MM2).sum())
+    assert expected > 0
+    (tmp_path / "one").mkdir()
+    (tmp_path / "two").mkdir()
+    out, doc = _fabricate(tmp_path / "one", [patch("b", 110, 70, 20, 0.7)])
+    (h,) = doc["hoopings"]
+    assert h["small_pieces"] == expected
+    assert f"warning: {expected} stitched piece(s) under 1 mm^2" in (out / "fabrication.md").read_text()
+    out, doc = _fabricate(tmp_path / "two", [patch("e", 110, 70, 40, 0.8)])
+    assert [h["small_pieces"] for h in doc["hoopings"]] == [0]
+    assert "stitched piece(s) under" not in (out / "fabrication.md").read_text()

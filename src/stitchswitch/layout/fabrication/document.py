@@ -149,6 +149,7 @@ class HoopingDoc:
     gap_crossings: int = 0          # thread laid over unstitched fabric (the stitch audit)
     gap_crossing_mm: float = 0.0
     hoop_reason: str = ""           # why this hoop, in plain words (``hoop_reason``)
+    small_pieces: int = 0           # pieces under stitches.SMALL_PIECE_AREA_MM2, sewn but warned
 
     def as_dict(self) -> dict:
         d = {"number": self.number, "hoop": self.hoop, "field_mm": list(self.field_mm),
@@ -165,7 +166,7 @@ class HoopingDoc:
         d.update(stitches=self.stitches, trims=self.trims, jumps=self.jumps,
                  colour_changes=self.colour_changes, thread_length_m=self.thread_length_m,
                  time_min=self.time_min, gap_crossings=self.gap_crossings,
-                 gap_crossing_mm=self.gap_crossing_mm)
+                 gap_crossing_mm=self.gap_crossing_mm, small_pieces=self.small_pieces)
         return d
 
 

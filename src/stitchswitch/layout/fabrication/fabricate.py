@@ -50,8 +50,9 @@ from stitchswitch.layout.fabrication.document import (
 from stitchswitch.layout.fabrication.grouping.footprints import stretch
 from stitchswitch.layout.fabrication.grouping.group import MODES, group
 from stitchswitch.layout.fabrication.grouping.result import Grouping
+from stitchswitch.layout.fabrication.hoop_outline import relaxed_outline
 from stitchswitch.layout.fabrication.hoop_reason import hoop_reason
-from stitchswitch.layout.fabrication.layout_plot import alignment_marks, hooping_figure, overview_figure
+from stitchswitch.layout.fabrication.layout_plot import hooping_figure, overview_figure
 from stitchswitch.layout.fabrication.marks_dxf import marks_dxf
 from stitchswitch.layout.fabrication.order import StitchingOrder, order_hoopings
 from stitchswitch.layout.fabrication.plan import audit_hooping, plan_hooping
@@ -252,7 +253,7 @@ def _label(design, stem: str) -> str:
 def _hooping_doc(k, h, hplan, specs, eta, names, threads, reason) -> HoopingDoc:
     plan = hplan.plan
     garment = h.piece is not None
-    marks = h.to_piece(np.array(alignment_marks(h.hoop))) / eta if garment else None
+    marks = relaxed_outline(h, eta).marks_mm if garment else None
     return HoopingDoc(
         number=k, hoop=h.hoop.name, field_mm=_r([h.hoop.width_mm, h.hoop.height_mm]),
         margin_mm=_r(h.hoop.margin_mm), frame_width_mm=_r(h.hoop.frame_width_mm),
@@ -270,7 +271,8 @@ def _hooping_doc(k, h, hplan, specs, eta, names, threads, reason) -> HoopingDoc:
         stitches=plan.stitch_count, trims=plan.trim_count, jumps=plan.jump_count,
         colour_changes=plan.color_changes, thread_length_m=_r(plan.thread_length_mm / 1000),
         time_min=_r(plan.sewing_time_min, 2), gap_crossings=threads.gap_crossings,
-        gap_crossing_mm=_r(threads.gap_crossing_mm), hoop_reason=reason)
+        gap_crossing_mm=_r(threads.gap_crossing_mm), hoop_reason=reason,
+        small_pieces=plan.small_pieces)
 
 
 def _doc(design, machine, fmt, options, eta, grouping, order, doc_hoops) -> FabricationDoc:

@@ -73,7 +73,8 @@ def _concat(plans, threads, spm: float) -> st.StitchPlan:
     xy.append(xy[-1] if xy else np.zeros(2))
     cmd.append(st.END)
     return st.StitchPlan(np.asarray(xy, dtype=float).reshape(-1, 2), np.asarray(cmd, dtype=np.int8),
-                         tuple(threads), spm)
+                         tuple(threads), spm,
+                         small_pieces=sum(plan.small_pieces for _, plan in plans))
 
 
 def plan_hooping(hooping: Hooping, specs: dict, geometry, prm: st.StitchParams | None = None
