@@ -280,7 +280,9 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
     threshold = config.alpha / m_left
     passes = lambda r0, f: f_test(r0, rss(f), m_fit.size, base_f.size, f.spec.size)[1] < threshold  # noqa: E731
     fit_a, _ = equal_footing(base_f, ev, d_tr, m_fit, fit_a, {name: ff}, passes,
-                             max_nfev=config.fit_max_nfev)
+                             max_nfev=config.fit_max_nfev,
+                             screen_spec=base_c if base_c != base_f else None,
+                             polish_max_nfev=config.polish_max_nfev)
     cv_a = cross_validate(base_f, ev, d_tr, m_fit, fit_a.x, labels, max_nfev=config.cv_max_nfev)
     cv_f = cross_validate(spec_f, ev, d_tr, m_fit, ff.x, labels, max_nfev=config.cv_max_nfev)
     F, p = f_test(rss(fit_a), rss(ff), m_fit.size, base_f.size, spec_f.size)
@@ -297,7 +299,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     """Run the workflow on ``data`` from the starting material ``start``; see the module
     docstring. ``executor``: a map-like for parallel solves. ``progress(message, stage,
     total)`` is called as each stage starts."""
-    from stitchswitch.validation.discovery.proposal import design_grid, predictions, propose
+    from stitchswitch.validation.discovery.proposal import design_grid, model_view, propose
     from stitchswitch.validation.discovery.residuals import smooth_split
 
     t0 = time.perf_counter()
@@ -380,7 +382,9 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         return f_test(rss0, rss1, n_res, base.size, f.spec.size)[1] < threshold
 
     base_fit, repolished = equal_footing(base, ev, d_tr, m_fit, fb, refined_fits, passes,
-                                         max_nfev=config.fit_max_nfev)
+                                         max_nfev=config.fit_max_nfev,
+                                         screen_spec=screen if screen != base else None,
+                                         polish_max_nfev=config.polish_max_nfev)
     rss0 = float(np.sum((base_fit.predictions - m_fit) ** 2))
     cv0 = cross_validate(base, ev, d_tr, m_fit, base_fit.x, labels, max_nfev=config.cv_max_nfev)
     before = np.empty_like(measured)
@@ -501,7 +505,10 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     models = list(models) + [(c.effect, c.spec, c.x) for c in lead]
     grid = design_grid()
     sigma = split0["noise_sigma_mm"]
-    proposal = propose(predictions(ev, models, grid), grid, sigma, config.propose)
+    views = {label: model_view(ev, spec, x, grid, d_tr, sigma,
+                               replace(spec, start=screen.start))
+             for label, spec, x in models} if config.propose else {}
+    proposal = propose(views, grid, sigma, config.propose)
     summary = {
         "missing_effect": chosen.effect if verdict == "named" else None,
         "missing_effects": ([chosen.effect] + ([second["effect"]] if second and
