@@ -318,6 +318,18 @@ def test_within_noise_groups_models_the_losses_cannot_separate():
     assert within_noise(best, {"tie": tie, "worse": worse}, 0.05) == ["tie"]
 
 
+def test_the_decision_is_about_the_best_ranked_significant_candidate():
+    from types import SimpleNamespace
+
+    from stitchswitch.validation.discovery.workflow import lead_candidate
+
+    a, b, c = (SimpleNamespace(effect=n, significant=s) for n, s in
+               (("a", False), ("b", True), ("c", True)))
+    assert lead_candidate((a, b, c)) is b
+    assert lead_candidate((b, a, c)) is b
+    assert lead_candidate((a, SimpleNamespace(effect="d", significant=False))) is a
+
+
 def test_proposal_picks_the_designs_where_the_models_differ_and_spreads_them():
     from stitchswitch.validation.discovery.proposal import design_grid, propose, template_csv
 

@@ -16,9 +16,10 @@ propose the samples that would decide.
    coefficients of every leader that would pass the F test (``fit.equal_footing``): both sides
    of the nested comparison are fitted equally well, so an effect at zero strength cannot look
    significant.
-4. **Decide**: the best-ranked candidate passes when it lowers the starting model's
+4. **Decide**: a candidate passes when it lowers the starting model's
    cross-validated error, its F test against the equally polished starting model gives p <
-   alpha / (number of candidates), and its strength is not zero. Other leaders whose held-out
+   alpha / (number of candidates), and its strength is not zero; the decision is about the
+   best-ranked passing one (``lead_candidate``). Other leaders whose held-out
    losses are within the noise of it (``cv.within_noise``) make the verdict
    "indistinguishable" (none is named). A passing effect is named only if it shrinks the
    systematic part (``residuals.smooth_split``) of every systematic keypoint it claims (those
@@ -54,7 +55,8 @@ from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
 from stitchswitch.validation.measured import QUANTITIES, MeasuredData
 from stitchswitch.validation.metrics import split_metrics
 
-__all__ = ["DiscoveryConfig", "Candidate", "Discovery", "discover", "stage_count", "FORWARD_FITS"]
+__all__ = ["DiscoveryConfig", "Candidate", "Discovery", "discover", "stage_count", "FORWARD_FITS",
+           "lead_candidate"]
 
 #: Forward selection fits this many second effects: those whose unabsorbed signature (on top of
 #: the first effect) correlates best with the residual the first one leaves. Fitting all five
@@ -253,6 +255,15 @@ def _candidate(name, spec, f, m_tr, cv, cv0, why, how, rss0, k0, m, config, ev, 
         zero_strength=zero, row_loss=cv.row_loss)
 
 
+def lead_candidate(ranking):
+    """The candidate the decision is about: the best-ranked significant one, else the best
+    ranked. Cross-validated errors a few percent apart do not order candidates reliably; a
+    higher-ranked candidate that is not significant is then compared with it (``within_noise``)
+    and, when the data cannot tell them apart, reported with it as indistinguishable instead of
+    hiding a significant effect behind an insignificant one."""
+    return next((c for c in ranking if c.significant), ranking[0])
+
+
 def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
     """The best second effect after ``first`` (a refined ``Candidate``): the ``FORWARD_FITS``
     other effects whose unabsorbed signature correlates best with the residual left by
@@ -427,13 +438,13 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     res_before = residual_analysis(d_all, p_all, measured - before, QUANTITIES,
                                    alpha=config.alpha, permutations=config.permutations,
                                    seed=config.seed)
-    top = ranking[0]
+    top = lead_candidate(ranking)
     group = []
     if top.significant:
-        others = {c.effect: c.row_loss for c in ranking[1:]
-                  if c.refined and not c.zero_strength and c.cv_mse_mm2 < cv0.score_mm2}
+        others = {c.effect: c.row_loss for c in ranking if c is not top
+                  and c.refined and not c.zero_strength and c.cv_mse_mm2 < cv0.score_mm2}
         close = within_noise(top.row_loss, others, config.alpha, config.seed)
-        group = [top] + [c for c in ranking[1:] if c.effect in close]
+        group = [top] + [c for c in ranking if c is not top and c.effect in close]
     chosen = top if top.significant else None
     after = before.copy()
     if chosen:
@@ -469,7 +480,10 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                   "samples below would)")
     elif chosen:
         verdict = "named"
-        reason = (f"{top.effect} has the lowest cross-validated error ({top.cv_mse_mm2:.3f} "
+        best = ("has the lowest cross-validated error" if top is ranking[0] else
+                "is the best-ranked candidate whose improvement is significant, with a "
+                "cross-validated error")
+        reason = (f"{top.effect} {best} ({top.cv_mse_mm2:.3f} "
                   f"against {cv0.score_mm2:.3f} mm^2 for the starting model) and its improvement "
                   f"is significant against the starting model fitted equally well: "
                   f"F = {top.f_statistic:.1f}, p = {top.p_value:.2g} < {threshold:.2g} "
