@@ -18,20 +18,27 @@ settings from the starting material, one worker, not told the source. Groups:
 * ``fem``: the finite-element shell reference with hoop bending and Poisson coupling.
 
 Scores. A library case counts 1 when the true effect is named, 1/2 when the verdict is
-"indistinguishable" and the group includes it (target >= 90 %). A *false discovery* is a
+"indistinguishable" and the group includes it (target >= 90 %). Beside it, each library case's
+*detectability*: the starting model fitted to the noise-free training rows leaves what no
+recalibration absorbs; with the case's noise that is the noncentrality of the F test an oracle
+(the true effect, fitted exactly) would run, and its power at the workflow's threshold
+(``detectability``). The identification on the cases with power >= 0.5 is printed too: a case
+below it cannot be identified by any test on its data. A *false discovery* is a
 named effect whose addition does not shrink the validation gap to the noise-free truth (MAE
 over the five keypoints) by at least 25 % (target 0 on null, foreign and fem data). The *gap
 reduction* (h and r_a, identified cases; target median >= 50 %) is printed with the noise floor
 (the noise-free truth's MAE against the noisy rows) and the share of the reachable reduction.
 Runtime per run: the process CPU time with one worker (wall time too; the machine is shared).
 
-The *proposal proof*: for every case whose verdict is "indistinguishable", the proposed next
-designs and as many random designs (seeded) are simulated (true model + the case's noise),
-added as training rows, and the workflow rerun: how often each resolves the group (a single
-effect named).
+The *proposal proof*: for every case whose verdict is "indistinguishable", ``--trials`` times
+(each trial its own seed for the random designs and for the noise of the new rows, the same
+noise draw for both arms): the proposed next designs and as many random designs are simulated
+(true model + the case's noise), added as training rows, and the workflow rerun with the
+group's candidates: how often each *resolves* the group (names one effect, the true one when
+the truth is a library effect).
 
     python benchmarks/bench_discover.py [--groups lib,null,foreign,small,two,fem]
-        [--only ID,...] [--log cases.jsonl] [--no-proposal] [--json]
+        [--only ID,...] [--log cases.jsonl] [--no-proposal] [--trials 3] [--json]
 
 ``--log`` appends one JSON line per finished case and skips cases already in it (resume).
 """
@@ -60,9 +67,15 @@ def _clip(name: str, v: float) -> float:
 
 
 def cases(groups=GROUPS) -> list[dict]:
+    """The cases of ``groups``; a case's seed does not depend on which groups are chosen."""
+    return [c for c in _all_cases() if c["group"] in groups]
+
+
+def _all_cases() -> list[dict]:
     from stitchswitch.validation.discovery.effects import LIBRARY
     from stitchswitch.validation.discovery.synthetic import draw_values
 
+    groups = GROUPS
     out, seed = [], 400
     base = {"noise": 1.0, "outliers": 0, "hetero": False, "design": "paper"}
 
@@ -197,18 +210,56 @@ def _gap(pred, clean, va):
     return np.mean(np.abs(pred[va] - clean[va]), axis=0)
 
 
-def _discover(designs, split, kp, title):
+def _discover(designs, split, kp, title, effects=None):
     from stitchswitch.validation.discovery.synthetic import START_MATERIAL
-    from stitchswitch.validation.discovery.workflow import discover
+    from stitchswitch.validation.discovery.workflow import DiscoveryConfig, discover
     from stitchswitch.validation.measured import parse_measurements
 
     data = parse_measurements(_csv(designs, split, kp, title), title)
+    config = DiscoveryConfig(effects=tuple(effects) if effects else None)
     c0, t0 = time.process_time(), time.perf_counter()
-    disc = discover(data, START_MATERIAL)
+    disc = discover(data, START_MATERIAL, config)
     return disc, time.process_time() - c0, time.perf_counter() - t0
 
 
-def run_case(case: dict, proposal: bool = True) -> dict:
+def detectability(case, designs, split, clean) -> dict:
+    """How visible the hidden effect is at all: the starting model fitted to the NOISE-FREE
+    training rows (screening resolution, then polished, as the workflow's step 1) leaves the
+    part of the effect no recalibration absorbs, RSS_clean (mm^2). With the case's noise
+    (sigma^2 the mean of the per-quantity variances) that is the noncentrality lambda =
+    RSS_clean / sigma^2 of the F test an oracle (the true effect, fitted exactly) would run,
+    and ``power`` its probability of passing at the workflow's alpha / (number of candidates).
+    A case with low power cannot be identified by any test on this data."""
+    from scipy.stats import f as f_dist
+    from scipy.stats import ncf
+
+    from stitchswitch.reduced.calibration.evolution import search_material
+    from stitchswitch.validation.discovery.effects import LIBRARY
+    from stitchswitch.validation.discovery.evaluate import Evaluator
+    from stitchswitch.validation.discovery.fit import fit
+    from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
+    from stitchswitch.validation.discovery.synthetic import SIGMA_MM, START_MATERIAL
+    from stitchswitch.validation.discovery.workflow import DiscoveryConfig
+
+    config = DiscoveryConfig()
+    tr = np.array(split) == "train"
+    d_tr = [d for d, t in zip(designs, tr) if t]
+    y = clean[tr]
+    ev = Evaluator()
+    base = ModelSpec(START_MATERIAL, None, BASE_FREE)
+    screen = ModelSpec(search_material(START_MATERIAL, config.screen_nodes), None, BASE_FREE)
+    fs = fit(screen, ev, d_tr, y, screen.encode(screen.start), max_nfev=config.fit_max_nfev)
+    fb = fit(base, ev, d_tr, y, fs.x, max_nfev=config.polish_max_nfev)
+    rss = float(np.sum((fb.predictions - y) ** 2))
+    sigma2 = float(np.mean((np.array(SIGMA_MM) * case["noise"]) ** 2))
+    lam = rss / sigma2
+    n, k1 = y.size, base.size + 1
+    crit = f_dist.isf(config.alpha / len(LIBRARY), 1, n - k1)
+    return {"rss_clean_mm2": rss, "lambda": lam,
+            "power": float(ncf.sf(crit, 1, n - k1, lam)) if lam > 0 else 0.0}
+
+
+def run_case(case: dict, proposal: bool = True, trials: int = 3) -> dict:
     designs, split, kp, clean = dataset(case)
     disc, cpu, wall = _discover(designs, split, kp, case["id"])
     s = disc.summary
@@ -228,32 +279,52 @@ def run_case(case: dict, proposal: bool = True) -> dict:
         "val_mae_before": {q: s["before"][q]["mae_mm"] for q in QUANT},
         "val_mae_after": {q: s["after"][q]["mae_mm"] for q in QUANT},
         "unexplained": s["unexplained_residual"],
+        "second": s["missing_effects"][1:],
         "share_explained": s["systematic"]["share_explained"],
         "noise_sigma_est": s["noise_floor"]["sigma_mm"],
         "cpu_seconds": cpu, "wall_seconds": wall, "solves": disc.solves,
     }
+    if case["group"] in ("lib", "small", "two"):
+        out["detectability"] = detectability(case, designs, split, clean)
     if proposal and s["verdict"] == "indistinguishable":
-        out["proposal_trial"] = _proposal_trial(case, designs, split, kp, s)
+        out["proposal_trials"] = [_proposal_trial(case, designs, split, kp, s, t)
+                                  for t in range(trials)]
     return out
 
 
-def _proposal_trial(case, designs, split, kp, s) -> dict:
-    """Rerun with the proposed designs, and with as many random designs, added (simulated)."""
+def _resolved(case, group, disc) -> bool:
+    """The rerun names one effect of the group, and the true one when the truth is a library
+    effect (a foreign or shell source has no right name: any member counts)."""
+    from stitchswitch.validation.discovery.effects import LIBRARY
+
+    named = disc.summary["missing_effect"]
+    if named is None or named not in group:
+        return False
+    return named == case["source"] if case["source"] in LIBRARY else True
+
+
+def _proposal_trial(case, designs, split, kp, s, trial: int) -> dict:
+    """Rerun with the proposed designs, and with as many random designs, added (simulated from
+    the true model with the case's noise, the same noise draw for both), deciding between the
+    indistinguishable group's candidates only. ``trial`` seeds the random designs and the
+    noise."""
     from stitchswitch.validation.discovery.proposal import D_RANGE_MM, P_RANGE
 
+    group = s["indistinguishable"]
     prop = [(r["d_mm"], r["fill"]) for r in s["proposal"]["designs"]]
-    rng = np.random.default_rng([case["seed"], 7])
+    rng = np.random.default_rng([case["seed"], 7, trial])
     rand = list(zip(np.round(rng.uniform(*D_RANGE_MM, len(prop)), 1).tolist(),
                     np.round(rng.uniform(*P_RANGE, len(prop)), 2).tolist()))
-    out = {}
+    out = {"trial": trial, "group": group}
     for label, extra in (("proposed", prop), ("random", rand)):
         clean = _truth(case["source"], case["values"], extra)
-        new = _noisy(case, clean, np.random.default_rng([case["seed"], 8]))
+        new = _noisy(case, clean, np.random.default_rng([case["seed"], 8, trial]))
         disc, cpu, _ = _discover(designs + extra, split + ["train"] * len(extra),
-                                 np.vstack([kp, new]), case["id"] + "+" + label)
+                                 np.vstack([kp, new]), f"{case['id']}+{label}{trial}", group)
         out[label] = {"designs": extra, "verdict": disc.summary["verdict"],
                       "named": disc.summary["missing_effect"],
-                      "group": disc.summary["indistinguishable"], "cpu_seconds": cpu}
+                      "group": disc.summary["indistinguishable"],
+                      "resolved": _resolved(case, group, disc), "cpu_seconds": cpu}
     return out
 
 
@@ -292,22 +363,28 @@ def summarize(results: list) -> dict:
                  if r["val_mae_before"][q] - r["noise_floor"][q] >= 0.1] for q in ("h", "r_a")}
     cpu = [r["cpu_seconds"] for r in results]
     wall = [r["wall_seconds"] for r in results]
-    trials = [r["proposal_trial"] for r in results if r.get("proposal_trial")]
-    resolved = {k: sum(t[k]["verdict"] == "named" for t in trials) for k in ("proposed", "random")}
+    trials = [t for r in results for t in r.get("proposal_trials", ())]
+    resolved = {k: sum(bool(t[k]["resolved"]) for t in trials) for k in ("proposed", "random")}
     score = sum(_score(r) for r in lib)
+    detectable = [r for r in lib if r.get("detectability", {}).get("power", 0.0) >= 0.5]
+    score_det = sum(_score(r) for r in detectable)
     fd = [r["id"] for r in clean_groups if _false_discovery(r)]
     return {
         "library_cases": len(lib), "score": score,
         "accuracy": score / len(lib) if lib else float("nan"),
         "per_case_score": {r["id"]: _score(r) for r in lib},
+        "detectable_cases": len(detectable), "detectable_score": score_det,
+        "detectable_accuracy": score_det / len(detectable) if detectable else float("nan"),
+        "undetectable": {r["id"]: r["detectability"]["power"] for r in lib
+                         if r not in detectable and "detectability" in r},
         "false_discoveries": fd, "false_discovery_cases": len(clean_groups),
         "named_on_clean_groups": {r["id"]: r["named"] for r in clean_groups if r["named"]},
         "median_gap_reduction": _per_q(np.median, red),
         "median_share_of_reachable_noisy_reduction": _per_q(np.median, reach),
         "noise_floor_median": {q: float(np.median([r["noise_floor"][q] for r in ident]))
                                if ident else float("nan") for q in ("h", "r_a")},
-        "two_effects": {r["id"]: [r["named"], r["unexplained"]] for r in results
-                        if r["group"] == "two"},
+        "two_effects": {r["id"]: [r["named"], r.get("second", []), r["unexplained"]]
+                        for r in results if r["group"] == "two"},
         "proposal_trials": len(trials), "resolved": resolved,
         "cpu_seconds_median": float(np.median(cpu)) if cpu else float("nan"),
         "cpu_seconds_max": float(np.max(cpu)) if cpu else float("nan"),
@@ -324,7 +401,7 @@ def summarize(results: list) -> dict:
 
 def table(results: list, summary: dict) -> str:
     lines = [f"{'case':30s} {'strength':>11s} {'verdict':40s} {'gap h':>12s} {'gap r_a':>12s} "
-             f"{'floor h r_a':>11s} {'cpu':>5s} {'wall':>5s}"]
+             f"{'floor h r_a':>11s} {'power':>5s} {'cpu':>5s} {'wall':>5s}"]
     for r in results:
         st = ", ".join(f"{v:.4g}" for v in r["values"]) or "-"
         fit = ", ".join(f"{v:.3g}" for v in r["fitted"].values())
@@ -339,12 +416,16 @@ def table(results: list, summary: dict) -> str:
             f"{r['gap_before']['h']:5.2f}->{r['gap_after']['h']:5.2f} "
             f"{r['gap_before']['r_a']:5.2f}->{r['gap_after']['r_a']:5.2f} "
             f"{r['noise_floor']['h']:5.2f} {r['noise_floor']['r_a']:5.2f} "
-            f"{r['cpu_seconds']:4.0f}s {r['wall_seconds']:4.0f}s")
+            f"{_power(r):>5s} {r['cpu_seconds']:4.0f}s {r['wall_seconds']:4.0f}s")
     s = summary
     lines += ["",
               f"identification (library and small-design cases; indistinguishable incl. the "
               f"truth = 1/2): {s['score']:g}/{s['library_cases']} = {100 * s['accuracy']:.0f} % "
               "(target >= 90 %)",
+              f"  on the detectable cases (oracle F-test power >= 0.5, column 'power'): "
+              f"{s['detectable_score']:g}/{s['detectable_cases']} = "
+              f"{100 * s['detectable_accuracy']:.0f} %; undetectable: "
+              + ", ".join(f"{k} ({v:.2f})" for k, v in s["undetectable"].items()),
               f"false discoveries (null, foreign, fem; named and gap shrunk < 25 %): "
               f"{len(s['false_discoveries'])}/{s['false_discovery_cases']} {s['false_discoveries']} "
               f"(target 0); named there: {s['named_on_clean_groups']}",
@@ -357,9 +438,9 @@ def table(results: list, summary: dict) -> str:
               f"{100 * s['median_share_of_reachable_noisy_reduction']['h']:.0f} %, r_a "
               f"{100 * s['median_share_of_reachable_noisy_reduction']['r_a']:.0f} %",
               f"two effects: {s['two_effects']}",
-              f"proposal proof: {s['proposal_trials']} indistinguishable case(s); resolved with "
-              f"the proposed designs {s['resolved']['proposed']}, with as many random designs "
-              f"{s['resolved']['random']}",
+              f"proposal proof: {s['proposal_trials']} trial(s) on the indistinguishable cases; "
+              f"resolved (the true effect named) with the proposed designs "
+              f"{s['resolved']['proposed']}, with as many random designs {s['resolved']['random']}",
               f"runtime per run, one worker: CPU median {s['cpu_seconds_median']:.0f} s, max "
               f"{s['cpu_seconds_max']:.0f} s (target <= 60 s); wall median "
               f"{s['wall_seconds_median']:.0f} s, max {s['wall_seconds_max']:.0f} s (shared machine)"]
@@ -368,12 +449,19 @@ def table(results: list, summary: dict) -> str:
     return "\n".join(lines)
 
 
+def _power(r) -> str:
+    d = r.get("detectability")
+    return f"{d['power']:.2f}" if d else "-"
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--groups", default=",".join(GROUPS))
     ap.add_argument("--only", default=None, help="comma-separated case ids to run, in this order")
     ap.add_argument("--log", default=None, help="JSON lines file: append results, skip done cases")
     ap.add_argument("--no-proposal", action="store_true", help="skip the proposal proof")
+    ap.add_argument("--trials", type=int, default=3,
+                    help="proposal-proof trials (seeds) per indistinguishable case")
     ap.add_argument("--list", action="store_true", help="print the case ids and exit")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args(argv)
@@ -403,7 +491,7 @@ def main(argv=None) -> int:
             r = done[case["id"]]
         else:
             try:
-                r = run_case(case, not args.no_proposal)
+                r = run_case(case, not args.no_proposal, args.trials)
             except InvalidInputError as exc:       # e.g. a strength whose data do not solve
                 r = {**case, "error": str(exc)}
                 print(f"{r['id']}: no dataset: {exc}", file=sys.stderr, flush=True)

@@ -174,11 +174,11 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
         "explained: " + ("n/a" if share is None else f"{100 * share:.0f} %"))
     if rep["proposal"]["designs"]:
         lines.append("")
-        lines.append("next samples (most discriminating first; template: next_samples.csv "
+        lines.append("next samples (in the order chosen; template: next_samples.csv "
                      "in the report):")
         for row in rep["proposal"]["designs"]:
-            lines.append(f"  d = {row['d_mm']:g} mm, p = {row['fill']:g}: expected chi^2 "
-                         f"{row['discrimination']:.1f} between the leading models")
+            lines.append(f"  d = {row['d_mm']:g} mm, p = {row['fill']:g}: adds an expected "
+                         f"chi^2 of {row['gain']:.1f} between the leading models")
     lines.append("")
     lines.append(f"{'validation':10s} " + " ".join(f"{q:>7}" for q in QUANTITIES))
     for which in ("before", "after"):

@@ -1,7 +1,11 @@
 """Held-out error and significance for model comparison.
 
 * ``fold_labels``: K folds over the distinct training designs (rows of one design stay
-  together), balanced, from a seeded permutation.
+  together): a design's fold is a seeded hash of its (d, p), so adding rows (the proposed next
+  samples, measured) leaves the folds of the rows already there as they were. A balanced
+  permutation would re-deal every fold when a design is added, and the verdict would change
+  with the new partition, not with what the new rows say. The folds are balanced on average
+  only (binomial sizes).
 * ``cross_validate``: for each fold, refit every parameter on the other folds by least squares
   started at the full-data fit (its finite-difference Jacobian is cached, so the first step is
   free) with at most ``max_nfev`` steps, and predict the held-out designs with cold solves. The
@@ -30,13 +34,18 @@ __all__ = ["fold_labels", "CrossValidation", "cross_validate", "f_test", "sign_f
 
 
 def fold_labels(designs, k: int, seed: int) -> np.ndarray:
-    """Fold index (0..k-1) of every row; rows of the same design share a fold."""
+    """Fold index (0..k-1) of every row; rows of the same design share a fold, and a design's
+    fold depends only on the design, ``k`` and ``seed``."""
+    import hashlib
+
     keys = [(float(d), float(p)) for d, p in designs]
-    unique = sorted(set(keys))
-    k = max(2, min(int(k), len(unique)))
-    order = np.random.default_rng(seed).permutation(len(unique))
-    fold_of = {unique[j]: pos % k for pos, j in enumerate(order)}
-    return np.array([fold_of[key] for key in keys])
+    k = max(2, min(int(k), len(set(keys))))
+
+    def fold(key):
+        h = hashlib.blake2b(f"{seed}:{key[0]!r}:{key[1]!r}".encode(), digest_size=8)
+        return int(int.from_bytes(h.digest(), "big") * k >> 64)
+
+    return np.array([fold(key) for key in keys])
 
 
 @dataclass(frozen=True)
@@ -56,6 +65,8 @@ def cross_validate(spec, ev, designs, measured, x_full, labels, *, max_nfev: int
     xs = []
     for k in range(int(labels.max()) + 1):
         test = labels == k
+        if not test.any():
+            continue
         train_d = [d for d, t in zip(designs, test) if not t]
         f = fit(spec, ev, train_d, measured[~test], x_full, max_nfev=max_nfev)
         xs.append(f.x)

@@ -175,10 +175,14 @@ def fit_effect(spec, ev, designs, measured, base_fit, J0, sig, *, max_nfev: int 
 
 
 def equal_footing(base_spec, ev, designs, measured, base_fit, fits, passes, *,
-                  max_nfev: int = 20) -> tuple[Fit, list]:
+                  max_nfev: int = 20, screen_spec=None, polish_max_nfev: int = 4) -> tuple[Fit, list]:
     """(best starting-model fit, [{"from", "train_mse_mm2"}]): ``base_fit`` re-polished by least
     squares from the coefficients of each fit in ``fits`` ({name: Fit}, in order) for which
-    ``passes(rss0, fit)`` holds against the best starting-model RSS so far."""
+    ``passes(rss0, fit)`` holds against the best starting-model RSS so far. With
+    ``screen_spec`` (the starting model at the screening resolution) the re-polish is done the
+    way the extended fits were made: ``max_nfev`` steps there, then ``polish_max_nfev`` at
+    ``base_spec``'s resolution (most of the walk at a quarter of the cost); without it,
+    ``max_nfev`` steps at ``base_spec``'s."""
     measured = np.asarray(measured, dtype=float)
     k = base_spec.size
     best, log = base_fit, []
@@ -186,7 +190,12 @@ def equal_footing(base_spec, ev, designs, measured, base_fit, fits, passes, *,
         rss0 = float(np.sum((best.predictions - measured) ** 2))
         if not passes(rss0, f):
             continue
-        fr = fit(base_spec, ev, designs, measured, np.asarray(f.x)[:k], max_nfev=max_nfev)
+        x0 = np.asarray(f.x)[:k]
+        if screen_spec is not None:
+            x0 = fit(screen_spec, ev, designs, measured, x0, max_nfev=max_nfev).x
+            fr = fit(base_spec, ev, designs, measured, x0, max_nfev=polish_max_nfev)
+        else:
+            fr = fit(base_spec, ev, designs, measured, x0, max_nfev=max_nfev)
         log.append({"from": name, "train_mse_mm2": fr.mse_mm2})
         if fr.mse_mm2 < best.mse_mm2:
             best = fr

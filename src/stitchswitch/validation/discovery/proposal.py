@@ -2,12 +2,27 @@
 
 Given the fitted leading models (the starting model and the best candidates, or a group the data
 cannot separate), every design of a grid over the design space (d in [15, 100] mm, p in
-[0.6, 1.0]) is solved with each of them. The *discrimination* of a design is the sum over all
-pairs of models of sum_q ((y_a,q - y_b,q) / sigma_q)^2: the expected chi^2 by which one new
-measurement there would favour the right model (sigma_q: the estimated noise per quantity). The
-k designs are picked greedily: the most discriminating first, then each next one with its
-discrimination scaled by 1 - exp(-r^2 / (2 l^2)), r its distance in the unit square of
-(d, p) to the nearest chosen design (l = ``SPREAD``), so the samples spread over the space.
+[0.6, 1.0]) is solved with each of them. The raw *difference* of a design for a pair of models
+is sum_q ((y_a,q - y_b,q) / sigma_q)^2 (sigma_q: the estimated noise per quantity).
+
+A raw difference is not what a new measurement decides: once the rows are added, both models
+are refitted, and a difference that their coefficients can absorb (moving a little away from the
+current data, typically where the data are thin, beyond the training designs) separates
+nothing. So the score of a set S of new designs is, for each pair and each way round, the
+misfit the refitted rival cannot avoid (a linearized refit, Atkinson and Fedorov's
+T-optimality):
+
+    T_b(S) = delta_S^T (Sigma_S + J_b,S C_b J_b,S^T)^-1 delta_S
+
+with delta_S = y_a - y_b at S (5 |S|), Sigma_S the noise covariance of the new rows, J_b,S the
+rival's sensitivities there (finite differences, ``fit.jacobian``) and C_b = (J_b^T Sigma^-1
+J_b + PRIOR I)^-1 the covariance of its parameters on the current training rows: the minimum
+over a parameter change Delta of the new rows' chi^2 plus Delta's cost on the old ones. The
+*discrimination* of S is the mean of T_a and T_b summed over the pairs (an expected chi^2).
+
+The k designs are picked greedily: each next one the largest gain of the discrimination of the
+set, scaled by 1 - exp(-r^2 / (2 l^2)), r its distance in the unit square of (d, p) to the
+nearest chosen design (l = ``SPREAD``), so the samples spread over the space.
 
 ``separation(...)`` gives, for each pair, the design that separates it best and by how many
 sigma. ``template_csv`` writes the proposal in the measured-data format (``validation.measured``)
@@ -16,14 +31,19 @@ with the keypoint columns left blank, to be filled in after fabrication.
 from __future__ import annotations
 
 import itertools
+from dataclasses import dataclass
 
 import numpy as np
 
 from stitchswitch.validation.measured import REQUIRED_COLUMNS
 
-__all__ = ["design_grid", "SPREAD", "predictions", "propose", "template_csv"]
+__all__ = ["design_grid", "SPREAD", "PRIOR", "ModelView", "model_view", "predictions",
+           "propose", "template_csv"]
 
 SPREAD = 0.2
+#: Prior precision (per search unit squared) that keeps the parameter covariance finite along
+#: directions the training rows do not determine.
+PRIOR = 1e-2
 D_RANGE_MM, P_RANGE = (15.0, 100.0), (0.6, 1.0)
 
 
@@ -32,6 +52,34 @@ def design_grid(nd: int = 12, np_: int = 9) -> list[tuple[float, float]]:
     d = np.round(np.linspace(*D_RANGE_MM, nd), 1)
     p = np.round(np.linspace(*P_RANGE, np_), 2)
     return [(float(a), float(b)) for a in d for b in p]
+
+
+@dataclass(frozen=True)
+class ModelView:
+    """One fitted model on the candidate designs: ``pred`` (n, 5) keypoints, ``jac`` (n, 5, k)
+    their sensitivities to the search vector, ``cov`` (k, k) the parameter covariance on the
+    training rows (None: the raw differences only)."""
+
+    pred: np.ndarray
+    jac: np.ndarray | None = None
+    cov: np.ndarray | None = None
+
+
+def model_view(ev, spec, x, designs, train_designs, sigma_mm, jac_spec=None) -> ModelView:
+    """The ``ModelView`` of (``spec``, ``x``) at ``designs``; the sensitivities are finite
+    differences with ``jac_spec`` (the same model at a coarser resolution, cheaper; None:
+    ``spec``) at the candidate designs and at ``train_designs``."""
+    from stitchswitch.validation.discovery.fit import jacobian
+
+    js = jac_spec or spec
+    lo, hi = js.bounds()
+    sigma = np.maximum(np.asarray(sigma_mm, dtype=float), 1e-6)
+    pred = ev.one(spec, x, designs)
+    J = jacobian(js, ev, designs, x, lo, hi).reshape(len(designs), 5, -1)
+    Jt = jacobian(js, ev, train_designs, x, lo, hi).reshape(len(train_designs), 5, -1)
+    Jw = (Jt / sigma[None, :, None]).reshape(-1, Jt.shape[2])
+    cov = np.linalg.inv(Jw.T @ Jw + PRIOR * np.eye(Jw.shape[1]))
+    return ModelView(pred, J, cov)
 
 
 def predictions(ev, models, designs) -> dict:
@@ -45,25 +93,49 @@ def _unit(designs) -> np.ndarray:
                             (a[:, 1] - P_RANGE[0]) / (P_RANGE[1] - P_RANGE[0])])
 
 
-def propose(preds: dict, designs, sigma_mm, k: int = 5) -> dict:
-    """{"designs": [{"d_mm", "fill", "discrimination", "pairs": {a|b: chi2}}] (k, best
-    first), "separation": [{"models", "d_mm", "fill", "sigmas"}]} from ``predictions``."""
-    labels = list(preds)
+def _unavoidable(delta, rival: ModelView, rows, sigma) -> float:
+    """delta^T (Sigma + J C J^T)^-1 delta over the designs ``rows`` (the refitted rival's
+    misfit there); the raw chi^2 when the rival has no sensitivities."""
+    d = delta[rows].ravel()
+    S = np.diag(np.tile(sigma ** 2, len(rows)))
+    if rival.jac is not None:
+        J = rival.jac[rows].reshape(len(d), -1)
+        S = S + J @ rival.cov @ J.T
+    return float(d @ np.linalg.solve(S, d))
+
+
+def propose(views: dict, designs, sigma_mm, k: int = 5) -> dict:
+    """{"designs": [{"d_mm", "fill", "discrimination", "gain", "pairs": {a|b: chi2}}] (k, in
+    the order chosen; ``discrimination``: of the set so far, ``gain``: what this design added,
+    ``pairs``: the raw difference of each pair there), "separation": [{"models", "d_mm",
+    "fill", "sigmas"}]} from {label: ``ModelView`` or (n, 5) keypoints}."""
+    views = {a: (v if isinstance(v, ModelView) else ModelView(np.asarray(v, dtype=float)))
+             for a, v in views.items()}
+    labels = list(views)
     sigma = np.maximum(np.asarray(sigma_mm, dtype=float), 1e-6)
     pairs = list(itertools.combinations(labels, 2))
     if not pairs:
         return {"designs": [], "separation": []}
-    chi = {f"{a}|{b}": np.sum(((preds[a] - preds[b]) / sigma) ** 2, axis=1) for a, b in pairs}
-    score = np.sum(list(chi.values()), axis=0)
+    delta = {(a, b): views[a].pred - views[b].pred for a, b in pairs}
+    chi = {f"{a}|{b}": np.sum((delta[a, b] / sigma) ** 2, axis=1) for a, b in pairs}
+
+    def score(rows):
+        return sum(0.5 * (_unavoidable(delta[a, b], views[b], rows, sigma)
+                          + _unavoidable(delta[a, b], views[a], rows, sigma)) for a, b in pairs)
+
     u = _unit(designs)
-    chosen, weight = [], np.ones(len(designs))
+    chosen, weight, current, out = [], np.ones(len(designs)), 0.0, []
     for _ in range(min(k, len(designs))):
-        j = int(np.argmax(score * weight))
+        gains = np.array([score(chosen + [j]) - current if j not in chosen else -np.inf
+                          for j in range(len(designs))])
+        j = int(np.argmax(np.where(np.isfinite(gains), np.maximum(gains, 0.0) * weight, -1.0)))
         chosen.append(j)
+        current += float(gains[j])
         r2 = np.sum((u - u[j]) ** 2, axis=1)
         weight = np.minimum(weight, 1.0 - np.exp(-r2 / (2 * SPREAD ** 2)))
-    out = [{"d_mm": designs[j][0], "fill": designs[j][1], "discrimination": float(score[j]),
-            "pairs": {key: float(v[j]) for key, v in chi.items()}} for j in chosen]
+        out.append({"d_mm": designs[j][0], "fill": designs[j][1], "discrimination": current,
+                    "gain": float(gains[j]),
+                    "pairs": {key: float(v[j]) for key, v in chi.items()}})
     sep = []
     for (a, b), v in zip(pairs, chi.values()):
         j = int(np.argmax(v))

@@ -174,9 +174,9 @@ def _story(rep: dict) -> dict:
                        "down-weighted: " + ", ".join(f"{d['sample']} {d['quantity']} (weight "
                                                      f"{d['weight']:.2f})" for d in down) + ".")
     if rep["proposal"]["designs"]:
-        after_text += (" Next samples (next_samples.csv, most discriminating first): " +
+        after_text += (" Next samples (next_samples.csv, in the order chosen, with the expected chi^2 each adds): " +
                        "; ".join(f"d = {r['d_mm']:g} mm, p = {r['fill']:g} (chi^2 "
-                                 f"{r['discrimination']:.1f})" for r in rep["proposal"]["designs"])
+                                 f"{r['gain']:.1f})" for r in rep["proposal"]["designs"])
                        + ".")
     return {"calib": calib, "where": where, "res_table": res_table, "rank_table": rank_table,
             "verdict": verdict, "evidence": evidence, "gap_table": gap_table,
