@@ -118,6 +118,7 @@ def test_a_bad_output_path_is_one_error_before_any_work(workdir, case, kind, mon
     (["calibrate", "d.csv", "-o", "m.txt"], "use .json"),
     (["import", "--rectangle", "300x200", "--name", "panel", "-o", "d.yaml"], "use .json"),
     (["simulate", "-d", "40", "-p", "0.8", "--profile-csv", "p.txt"], "use .csv"),
+    (["discover", "--demo", "--json", "r.txt"], "use .json"),
     (["patch", "-d", "30", "-p", "0.8", "-o", "p.png", "--format", "dst", "--preview", "p.png"],
      "the same file as --output"),
 ])

@@ -92,7 +92,7 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
         check_discovery_dir(report_dir)
     json_file = None if json_out in (None, "-") else json_out
     if json_file is not None:
-        check_output_file(json_file, what="--json")
+        check_output_file(json_file, (".json",), what="--json", hint="the report is JSON")
     workers = workers or default_workers()
 
     with make_executor(workers) as ex:
