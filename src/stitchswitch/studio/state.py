@@ -60,18 +60,17 @@ class StudioState:
         return bool(self._redo)
 
     def undo(self) -> None:
-        if not self._undo:
-            return
-        self._redo.append((self.design, self.selected, self.also_selected))
-        self.design, self.selected, self.also_selected = self._undo.pop()
-        self._last_edit = None
-        self.changed += 1
+        self._step(self._undo, self._redo)
 
     def redo(self) -> None:
-        if not self._redo:
+        self._step(self._redo, self._undo)
+
+    def _step(self, source: list, target: list) -> None:
+        """Restore the last state of ``source``, keeping the current one on ``target``."""
+        if not source:
             return
-        self._undo.append((self.design, self.selected, self.also_selected))
-        self.design, self.selected, self.also_selected = self._redo.pop()
+        target.append((self.design, self.selected, self.also_selected))
+        self.design, self.selected, self.also_selected = source.pop()
         self._last_edit = None
         self.changed += 1
 

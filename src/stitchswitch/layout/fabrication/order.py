@@ -26,8 +26,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from stitchswitch.layout.check.rules.hoopable import ring_touches
 from stitchswitch.layout.embroidery.ordering import visiting_order
-from stitchswitch.layout.fabrication.grouping.candidates import ring_overlap
 from stitchswitch.layout.fabrication.grouping.result import Hooping
 
 EXACT_MAX = 14
@@ -65,7 +65,7 @@ def frame_contacts(hoopings, feet) -> list[list[list[str]]]:
             x = np.array([f.centre_mm[0] for f in fs])
             y = np.array([f.centre_mm[1] for f in fs])
             r = np.array([f.radius_mm for f in fs])
-            hit = ring_overlap(np.array([ha.centre_mm[0]]), np.array([ha.centre_mm[1]]), fw, fh,
+            hit = ring_touches(np.array([ha.centre_mm[0]]), np.array([ha.centre_mm[1]]), fw, fh,
                                ha.hoop.frame_width_mm, x, y, r)[0]
             out[a][b] = [f.id for f, t in zip(fs, hit) if t]
     return out

@@ -59,17 +59,6 @@ class Candidates:
         return len(self.hoop_index)
 
 
-_held = hoopable.held
-
-
-def _allowed(piece, cx, cy, ow, oh) -> np.ndarray:
-    return hoopable.allowed(piece, cx, cy, ow, oh)
-
-
-#: the frame-ring test of the check (``hoopable.ring_touches``)
-ring_overlap = hoopable.ring_touches
-
-
 def _variants(hoops):
     for k, hoop in enumerate(hoops):
         for o in hoop.orientations:
@@ -106,8 +95,8 @@ def _positions_on_grid(members, x, y, r, hoop, o, piece, n_grid):
     cy = lo_y[:, None] + b[None, :] * (hi_y - lo_y)[:, None]
     contacts = np.empty(cx.shape, dtype=int)
     for j in range(cx.shape[1]):
-        held = _held(cx[:, j], cy[:, j], x, y, r, w, h)
-        ring = ring_overlap(cx[:, j], cy[:, j], fw, fh, hoop.frame_width_mm, x, y, r)
+        held = hoopable.held(cx[:, j], cy[:, j], x, y, r, w, h)
+        ring = hoopable.ring_touches(cx[:, j], cy[:, j], fw, fh, hoop.frame_width_mm, x, y, r)
         contacts[:, j] = (ring & ~held).sum(axis=1)
     centred = (a - 0.5) ** 2 + (b - 0.5) ** 2
     rank = np.argsort(contacts + 0.1 * centred[None, :], axis=1, kind="stable")
@@ -118,7 +107,7 @@ def _positions_on_grid(members, x, y, r, hoop, o, piece, n_grid):
             break
         j = rank[todo, step]
         px, py = cx[todo, j], cy[todo, j]
-        ok = _allowed(piece, px, py, ow, oh)
+        ok = hoopable.allowed(piece, px, py, ow, oh)
         out[todo[ok]] = np.column_stack([px[ok], py[ok]])
         todo = todo[~ok]
     return out
@@ -156,8 +145,8 @@ def generate(feet, pieces, hoops: tuple[Hoop, ...]) -> Candidates:
                 np.tile(fits, 3)], 9))
             ay = np.unique(np.round(np.concatenate([ys - rs + h / 2, ys + rs - h / 2, ys])[
                 np.tile(fits, 3)], 9))
-            bx = bitsets.pack(_held(ax, np.zeros_like(ax), xs, np.zeros_like(ys), rs, w, np.inf))
-            by = bitsets.pack(_held(np.zeros_like(ay), ay, np.zeros_like(xs), ys, rs, np.inf, h))
+            bx = bitsets.pack(hoopable.held(ax, np.zeros_like(ax), xs, np.zeros_like(ys), rs, w, np.inf))
+            by = bitsets.pack(hoopable.held(np.zeros_like(ay), ay, np.zeros_like(xs), ys, rs, np.inf, h))
             sets = (bx[:, None, :] & by[None, :, :]).reshape(-1, bx.shape[1])
             sets = np.unique(sets[np.any(sets != 0, axis=1)], axis=0)
             members = bitsets.unpack(sets, len(idx))
@@ -197,7 +186,7 @@ def _holds_of(rows, x, y, r, hoops, piece_of, n):
     out = np.zeros((len(rows), n), dtype=bool)
     for j, (k, o, cx, cy, pi) in enumerate(rows):
         w, h = hoops[k].usable_mm(o)
-        out[j] = _held(np.array([cx]), np.array([cy]), x, y, r, w, h)[0] & (piece_of == pi)
+        out[j] = hoopable.held(np.array([cx]), np.array([cy]), x, y, r, w, h)[0] & (piece_of == pi)
     return out
 
 
@@ -210,8 +199,8 @@ def _assemble(rows, x, y, r, hoops, piece_of, n) -> Candidates:
         fw, fh = hoop.field_mm(o)
         same = piece_of == pi
         c1, c2 = np.array([cx]), np.array([cy])
-        holds[j] = _held(c1, c2, x, y, r, w, h)[0] & same
-        touches[j] = (ring_overlap(c1, c2, fw, fh, hoop.frame_width_mm, x, y, r)[0]
+        holds[j] = hoopable.held(c1, c2, x, y, r, w, h)[0] & same
+        touches[j] = (hoopable.ring_touches(c1, c2, fw, fh, hoop.frame_width_mm, x, y, r)[0]
                       & same & ~holds[j])
     # one row per distinct (hoop, orientation, piece, held set): the first found is kept
     key = np.column_stack([np.array([rw[0] for rw in rows]), np.array([rw[1] for rw in rows]),
