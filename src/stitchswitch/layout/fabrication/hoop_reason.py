@@ -10,8 +10,9 @@ fabric):
 * none holds them together inside its field minus the margin: the hoop is the smallest that
   does (the patches' span is stated);
 * one holds them but, in garment mode, no position of it on a 5 x 5 grid over the positions
-  that hold them has its frame on the fabric (``check.rules.hoopable.allowed``, the grouping's
-  own test): a smaller hoop does not fit there on the piece;
+  that hold them (``check.rules.hoopable.feasible_box`` and ``box_grid``, the grouping's first
+  grid) has its frame on the fabric (``check.rules.hoopable.allowed``, the grouping's own
+  test): a smaller hoop does not fit there on the piece;
 * otherwise the smaller hoop would do, and the reason is the design-wide objective: one hoop
   type fewer to set up (the grouping prefers that to a smaller hoop) or a frame kept off other
   patches.
@@ -21,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from stitchswitch.layout.check.rules import hoopable
+from stitchswitch.layout.fabrication.grouping.candidates import GRIDS
 
 __all__ = ["hoop_reason"]
 
@@ -39,17 +41,15 @@ def _placeable(hoop, o, xy, r, region) -> bool:
     """Whether hoop ``hoop`` turned by ``o`` holds the discs, and (with a ``region``) some
     position holding them has its frame on the fabric."""
     w, h = hoop.usable_mm(o)
-    lo_x, hi_x = np.max(xy[:, 0] + r) - w / 2, np.min(xy[:, 0] - r) + w / 2
-    lo_y, hi_y = np.max(xy[:, 1] + r) - h / 2, np.min(xy[:, 1] - r) + h / 2
-    if lo_x > hi_x + 1e-9 or lo_y > hi_y + 1e-9:
+    box = hoopable.feasible_box(np.ones((1, len(r)), dtype=bool), xy[:, 0], xy[:, 1], r, w, h)
+    lo_x, hi_x, lo_y, hi_y = box
+    if lo_x[0] > hi_x[0] + hoopable.TOL_MM or lo_y[0] > hi_y[0] + hoopable.TOL_MM:
         return False
     if region is None:
         return True
-    t = np.linspace(0.0, 1.0, 5)
-    a, b = (g.ravel() for g in np.meshgrid(t, t))
+    cx, cy, _, _ = hoopable.box_grid(*box, GRIDS[0])
     ow, oh = hoop.outer_mm(o)
-    return bool(hoopable.allowed(region, lo_x + a * (hi_x - lo_x), lo_y + b * (hi_y - lo_y),
-                                 ow, oh).any())
+    return bool(hoopable.allowed(region, cx[0], cy[0], ow, oh).any())
 
 
 def hoop_reason(hooping, hoops, feet, pieces) -> str:

@@ -56,6 +56,29 @@ def ring_touches(cx, cy, fw, fh, frame, x, y, r) -> np.ndarray:
     return meets_outer & ~inside_field & (frame > 0)
 
 
+def feasible_box(members, x, y, r, w, h) -> tuple[np.ndarray, ...]:
+    """The field centres at which a hoop field of usable size w x h holds every disc of a set:
+    the box [lo_x, hi_x] x [lo_y, hi_y], lo_x = max(x + r) - w/2, hi_x = min(x - r) + w/2 over
+    the set (likewise y), for each row of ``members`` (bool (s, n) over the discs (x, y, r)) at
+    once. Returns (lo_x, hi_x, lo_y, hi_y), each (s,); lo > hi (beyond round-off): no position
+    holds the set. The candidate placements of the grouping and the workshop sheet's hoop
+    reason both choose positions in it."""
+    big = np.where(members, 1.0, np.nan)
+    return (np.nanmax(big * (x + r), axis=1) - w / 2, np.nanmin(big * (x - r), axis=1) + w / 2,
+            np.nanmax(big * (y + r), axis=1) - h / 2, np.nanmin(big * (y - r), axis=1) + h / 2)
+
+
+def box_grid(lo_x, hi_x, lo_y, hi_y, n_grid: int):
+    """n_grid x n_grid field centres spread evenly over each box of ``feasible_box`` (corners
+    included): (cx, cy), each (s, n_grid**2), and the grid's unit coordinates (a, b), each
+    (n_grid**2,), x varying fastest."""
+    t = np.linspace(0.0, 1.0, n_grid)
+    a, b = (g.ravel() for g in np.meshgrid(t, t))
+    cx = lo_x[:, None] + a[None, :] * (hi_x - lo_x)[:, None]
+    cy = lo_y[:, None] + b[None, :] * (hi_y - lo_y)[:, None]
+    return cx, cy, a, b
+
+
 def allowed(region, cx, cy, ow, oh) -> np.ndarray:
     """(len(cx),) bool: the outer rectangles ow x oh centred at (cx, cy) lie on ``region``."""
     boxes = shapely.box(cx - ow / 2, cy - oh / 2, cx + ow / 2, cy + oh / 2)

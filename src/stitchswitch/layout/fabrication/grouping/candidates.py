@@ -16,9 +16,10 @@ Enumeration (exact for the sets that can be held, before the piece-edge rule):
    set; the other anchors add smaller sets that may survive the edge rule.
 2. The held sets at all anchor pairs are deduplicated (bit sets); for each distinct set S the
    position is chosen in S's feasible box (cx in [max_S(x + r) - W/2, min_S(x - r) + W/2], same
-   for y): of a 5 x 5 grid over the box, the positions whose frame ring touches the fewest
-   other patches come first, then those nearest the box centre; the first allowed position is
-   kept (and may hold more than S). A set with no allowed position on that grid gets a
+   for y; ``hoopable.feasible_box``, the box the workshop sheet's hoop reason tests too): of a
+   5 x 5 grid over the box (``hoopable.box_grid``), the positions whose frame ring touches the
+   fewest other patches come first, then those nearest the box centre; the first allowed
+   position is kept (and may hold more than S). A set with no allowed position on that grid gets a
    17 x 17 grid; a set with none there either is dropped.
 3. A patch that no kept placement holds gets a search of its own: a 2 mm grid over every
    position that holds it, for every hoop and orientation; the allowed position holding the
@@ -84,15 +85,7 @@ def _positions_on_grid(members, x, y, r, hoop, o, piece, n_grid):
     w, h = hoop.usable_mm(o)
     fw, fh = hoop.field_mm(o)
     ow, oh = hoop.outer_mm(o)
-    big = np.where(members, 1.0, np.nan)
-    lo_x = np.nanmax(big * (x + r), axis=1) - w / 2
-    hi_x = np.nanmin(big * (x - r), axis=1) + w / 2
-    lo_y = np.nanmax(big * (y + r), axis=1) - h / 2
-    hi_y = np.nanmin(big * (y - r), axis=1) + h / 2
-    t = np.linspace(0.0, 1.0, n_grid)
-    a, b = (g.ravel() for g in np.meshgrid(t, t))
-    cx = lo_x[:, None] + a[None, :] * (hi_x - lo_x)[:, None]          # (s, 25)
-    cy = lo_y[:, None] + b[None, :] * (hi_y - lo_y)[:, None]
+    cx, cy, a, b = hoopable.box_grid(*hoopable.feasible_box(members, x, y, r, w, h), n_grid)
     contacts = np.empty(cx.shape, dtype=int)
     for j in range(cx.shape[1]):
         held = hoopable.held(cx[:, j], cy[:, j], x, y, r, w, h)
