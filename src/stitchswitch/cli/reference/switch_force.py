@@ -3,7 +3,6 @@ force-displacement curve, the switching force in newtons, the energy barrier, bo
 whether the patch is bistable or springs back."""
 from __future__ import annotations
 
-import io
 import json
 import logging
 
@@ -12,7 +11,6 @@ import click
 from stitchswitch.cli import options
 from stitchswitch.cli.reference.shell_options import shell_options, shell_params
 from stitchswitch.errors import StitchSwitchError
-from stitchswitch.files.atomic import atomic_write_bytes, atomic_write_text
 from stitchswitch.files.outputs import check_distinct, together
 from stitchswitch.reduced.model.material_io import load_material
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Patch
@@ -46,6 +44,8 @@ def switch_force(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_
     from dataclasses import replace
 
     from stitchswitch.fem_reference.snap.path import switching_path
+    from stitchswitch.fem_reference.snap.path_csv import write_curve_csv
+    from stitchswitch.fem_reference.snap.path_plot import write_curve_png
     from stitchswitch.fem_reference.snap.states import bistability
 
     outputs = {"--csv": csv_path, "--plot": plot}
@@ -63,9 +63,11 @@ def switch_force(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_
     # axisymmetric path reaches it)
     out["verdict"] = bistability(patch, material, params).verdict
     out["knit_stiffness_n_per_m"] = knit_stiffness_n_per_m
-    force_n = curve.force * curve.newton_per_n
     with together(outputs) as tmp:
-        _write(tmp, curve, force_n, out, diameter_mm, fill, knit_stiffness_n_per_m)
+        if tmp.get("--csv") is not None:
+            write_curve_csv(tmp["--csv"], curve, knit_stiffness_n_per_m)
+        if tmp.get("--plot") is not None:
+            write_curve_png(tmp["--plot"], curve, out["verdict"])
     if as_json:
         click.echo(json.dumps(out))
         return
@@ -86,35 +88,3 @@ def switch_force(diameter_mm, fill, material_path, nu, kappa0_per_mm, thickness_
                     "path); the switching force printed is the last force")
     if not out["all_converged"]:
         log.warning("some plate steps did not converge")
-
-
-
-def _write(tmp, curve, force_n, out, diameter_mm, fill, knit_stiffness_n_per_m):
-    """The CSV of the force-displacement curve and its plot, into the temporary paths of
-    ``files.outputs.together`` (None: not asked for)."""
-    if tmp.get("--csv") is not None:
-        rows = "\n".join(f"{w:.6f},{f:.9g}" for w, f in zip(curve.w_mm, force_n))
-        atomic_write_text(tmp["--csv"], "# stitchswitch switch-force, shell of revolution, plate "
-                          f"radius {curve.plate_radius_mm:.2f} mm, knit stiffness "
-                          f"{knit_stiffness_n_per_m:g} N/m, d_mm={diameter_mm:g}, fill={fill:g}\n"
-                          f"w_mm,force_N\n{rows}\n")
-    if tmp.get("--plot") is not None:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        fig, ax = plt.subplots(figsize=(6, 4), dpi=120)
-        ax.plot(curve.w_mm, force_n, "o-", ms=3)
-        ax.axhline(curve.switching_force_n, color="k", lw=0.5, ls="--")
-        ax.set_xlabel("plate height w (mm)")
-        ax.set_ylabel("contact force (N)")
-        ax.set_title(f"d = {diameter_mm:g} mm, p = {fill:g}: switching force "
-                     f"{curve.switching_force_n:.3g} N ({out['verdict']})")
-        ax.invert_xaxis()
-        ax.grid(alpha=0.3)
-        fig.tight_layout()
-        buf = io.BytesIO()
-        fig.savefig(buf, format="png", metadata={"Software": None})
-        plt.close(fig)
-        atomic_write_bytes(tmp["--plot"], buf.getvalue())

@@ -7,6 +7,9 @@ bistability (docs/fem-reference.md, "Switching").
   -> Bistability`` (bistable, spring-back or flat), ``mirrored``, ``is_inverted``;
 * ``path``: ``switching_path(patch, ...) -> SwitchingPath``: force-displacement curve,
   switching force (N), energy barrier (mJ), both states;
+* ``path_plot``: ``curve_png(curve, verdict)``, ``write_curve_png``: the force-displacement
+  curve as a PNG, byte-identical for the same curve, written atomically; ``path_csv``:
+  ``curve_csv(curve, knit_stiffness_n_per_m)``, ``write_curve_csv``: the same curve as CSV;
 * ``regions``: ``bistability_map(diameters, fills, ...) -> BistabilityMap``, its PNG and text;
 * ``force_scale``: ``fit_force_scale(samples, ...) -> ForceScaleFit``: newtons from measured
   switching forces, validated on held-out rows.
