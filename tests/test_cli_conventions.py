@@ -54,3 +54,24 @@ def test_center_keeps_its_old_spelling_as_a_deprecated_alias(tmp_path):
                   "--centre", "150,100", "-d", "40", "-p", "0.7"])
     assert r.exit_code == 0, r.output
     assert "Warning: --centre is deprecated; use --center" in r.stderr
+
+
+def test_place_and_inverse_share_the_inverse_target_options():
+    """--radius, --max-diameter, --min-fill come from one declaration (cli/options.py): the
+    same destination, type and metavar in both commands; place's help says they apply with
+    --height, inverse's does not, and both say the unit and the default."""
+    place = {p.opts[0]: p for p in options_of("place")}
+    inverse = {p.opts[0]: p for p in options_of("inverse")}
+    for opt, dest, unit in (("--radius", "radius_mm", "in mm"),
+                            ("--max-diameter", "max_diameter_mm", "in mm"),
+                            ("--min-fill", "min_fill", "fill")):
+        a, b = place[opt], inverse[opt]
+        assert (a.name, a.type, a.metavar, a.default) == (b.name, b.type, b.metavar, b.default)
+        assert a.name == dest and a.default is None
+        assert a.help == "With --height: " + b.help[0].lower() + b.help[1:]
+        assert not b.help.startswith("With") and unit in b.help
+    for opt in ("--max-diameter", "--min-fill"):
+        assert "[default: the map's" in inverse[opt].help
+    for name in ("place", "inverse"):
+        out = CliRunner().invoke(cli, [name, "--help"]).output
+        assert "target boundary radius r_a" in out.lower() and "--min-fill P" in out

@@ -138,6 +138,29 @@ json_opt = click.option(
     "--json", "as_json", is_flag=True, help="Print one JSON object instead of the table.")
 
 
+def inverse_target_opts(when: str = ""):
+    """The options of an inverse-design target besides its height, as ``InverseTarget`` takes
+    them: ``--radius`` (``radius_mm``), ``--max-diameter`` (``max_diameter_mm``) and
+    ``--min-fill`` (``min_fill``), each None when not given. ``when`` starts each help text
+    (e.g. "With --height: " for a command where they apply only with that option)."""
+    def cap(text: str) -> str:
+        return when + text if when else text[0].upper() + text[1:]
+
+    radius = click.option(
+        "--radius", "radius_mm", type=FINITE_FLOAT, default=None, metavar="MM",
+        help=cap("target boundary radius r_a in mm (optional)."))
+    max_diameter = click.option(
+        "--max-diameter", "max_diameter_mm", type=FINITE_FLOAT, default=None, metavar="MM",
+        help=cap("largest allowed diameter in mm [default: the map's largest]."))
+    min_fill = click.option(
+        "--min-fill", "min_fill", type=FINITE_FLOAT, default=None, metavar="P",
+        help=cap("smallest allowed fill [default: the map's smallest]."))
+
+    def decorator(f):
+        return radius(max_diameter(min_fill(f)))
+    return decorator
+
+
 def deprecated_alias(old: str, new: str):
     """A hidden option ``old`` kept for old scripts: its value goes to ``new``'s parameter with
     one ``Warning:`` line on stderr (so that ``--json`` output stays clean). Give it the same

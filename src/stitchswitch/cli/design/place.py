@@ -64,12 +64,7 @@ def _grid(text: str) -> tuple[int, int]:
 @click.option("--height", "height_mm", type=options.FINITE_FLOAT, default=None, metavar="MM",
               help="Instead of -d/-p: inverse-design a patch of this peak height h under the "
                    "check's rules at the position and place the best that passes them.")
-@click.option("--radius", "radius_mm", type=options.FINITE_FLOAT, default=None, metavar="MM",
-              help="With --height: target boundary radius r_a.")
-@click.option("--max-diameter", "max_diameter_mm", type=options.FINITE_FLOAT, default=None,
-              metavar="MM", help="With --height: largest allowed diameter [default: the map's].")
-@click.option("--min-fill", type=options.FINITE_FLOAT, default=None, metavar="P",
-              help="With --height: smallest allowed fill [default: the map's].")
+@options.inverse_target_opts("With --height: ")
 @click.option("--conductive", default=None, metavar="SPEC",
               help="Conductive triangles: index:I,J | ring:K,.. | annulus:IN:OUT | polygon:...")
 @click.option("--state", type=click.Choice(STATES), default="up", show_default=True,

@@ -18,12 +18,7 @@ def for_machine(**kwargs):
 @click.command(cls=options.Command)
 @click.option("--height", "height_mm", type=options.FINITE_FLOAT, required=True, metavar="MM",
               help="Target peak height h in mm.")
-@click.option("--radius", "radius_mm", type=options.FINITE_FLOAT, default=None, metavar="MM",
-              help="Target boundary radius r_a in mm (optional).")
-@click.option("--max-diameter", "max_diameter_mm", type=options.FINITE_FLOAT, default=None,
-              metavar="MM", help="Largest allowed diameter.")
-@click.option("--min-fill", type=options.FINITE_FLOAT, default=None, metavar="P",
-              help="Smallest allowed fill.")
+@options.inverse_target_opts()
 @click.option("--force-range", type=(options.FINITE_FLOAT, options.FINITE_FLOAT), default=None,
               metavar="LO HI", help="Allowed switching force window in N.")
 @click.option("--count", type=click.IntRange(min=1, max=50), default=5, show_default=True,
