@@ -89,10 +89,15 @@ def test_fabrication_sheet_and_jef_name_the_same_threads(tmp_path):
     assert r.exit_code == 0, r.output
     doc = json.loads((out / "fabrication.json").read_text())
     sheet = (out / "fabrication.md").read_text()
+    assert doc["schema"] == 2
     for h in doc["hoopings"]:
         decoded = jef.decode((out / h["files"]["embroidery"]).read_bytes())
         shown = jef_threads([t["colour"] for t in h["threads"]])
         assert decoded.header["palette"] == [t.index for t in shown]
+        # fabrication.json records the palette thread the file stores for each block
+        assert [t["jef_thread"] for t in h["threads"]] == [
+            {"index": i, "number": t.number, "name": t.name, "colour": t.colour}
+            for i, t in zip(decoded.header["palette"], shown)]
         for t, thread in zip(shown, h["threads"]):
             assert (f"{thread['role']} {t.name}, Janome {t.number} (JEF colour {t.index}, "
                     f"design colour {thread['colour']})") in sheet
@@ -106,6 +111,9 @@ def test_fabricated_dst_is_labelled_with_the_design_name(tmp_path):
     assert r.exit_code == 0, r.output
     assert dst.decode((out / "hoop01.dst").read_bytes()).header["LA"] == "sleeve hoop01"
     assert "JEF colour" not in (out / "fabrication.md").read_text()   # a DST has no palette
+    doc = json.loads((out / "fabrication.json").read_text())
+    assert doc["schema"] == 2
+    assert all("jef_thread" not in t for h in doc["hoopings"] for t in h["threads"])
 
 
 def test_patch_prints_the_machine_threads_and_labels_the_file(tmp_path):

@@ -127,10 +127,10 @@ def patch(diameter_mm, fill, resolution_mm, conductive, core, outline, fmt, hoop
 def _thread_rows(plan, output) -> list[tuple[str, str]]:
     """One row per thread block: its role and, for a JEF file, the palette thread the machine
     shows for it (``jef_palette``), else the colour the file carries."""
-    from stitchswitch.layout.embroidery.jef_palette import machine_thread_text
+    from stitchswitch.layout.embroidery.jef_palette import is_jef, machine_thread_text
 
     rgbs = [t.rgb for t in plan.threads]
-    shown = (machine_thread_text(rgbs) if str(output).lower().endswith(".jef")
+    shown = (machine_thread_text(rgbs) if is_jef(output)
              else ["#%02x%02x%02x" % c for c in rgbs])
     return [(f"thread {k}", f"{t.name}: {text}")
             for k, (t, text) in enumerate(zip(plan.threads, shown), start=1)]

@@ -20,7 +20,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Sequence
 
-__all__ = ["JefThread", "palette", "jef_threads", "machine_thread_text", "sheet_colour_names"]
+__all__ = ["JefThread", "is_jef", "palette", "jef_threads", "machine_thread_text",
+           "sheet_colour_names"]
 
 
 @dataclass(frozen=True)
@@ -35,6 +36,22 @@ class JefThread:
 
     def text(self) -> str:
         return f"{self.name} (Janome {self.number}, JEF colour {self.index})"
+
+    def sheet_text(self, design_colour: str) -> str:
+        """How the fabrication sheet names the thread of a block the design sews in
+        ``design_colour``."""
+        return (f"{self.name}, Janome {self.number} (JEF colour {self.index}, design colour "
+                f"{design_colour})")
+
+    def as_dict(self) -> dict:
+        """The entry as fabrication.json's ``jef_thread`` records it."""
+        return {"index": self.index, "number": self.number, "name": self.name,
+                "colour": self.colour}
+
+
+def is_jef(embroidery_file) -> bool:
+    """Whether the machine file is a JEF (its colours are then palette threads)."""
+    return str(embroidery_file).lower().endswith(".jef")
 
 
 def _rgb_int(colour) -> int:
@@ -87,7 +104,6 @@ def machine_thread_text(colours: Sequence) -> list[str]:
 def sheet_colour_names(colours: Sequence[str], embroidery_file: str) -> list[str]:
     """How the fabrication sheet names each block's thread: the design's colour and, when the
     hooping's file is a JEF, the palette thread the machine will show for it."""
-    if not str(embroidery_file).lower().endswith(".jef"):
+    if not is_jef(embroidery_file):
         return [str(c) for c in colours]
-    return [f"{t.name}, Janome {t.number} (JEF colour {t.index}, design colour {c})"
-            for c, t in zip(colours, jef_threads(colours))]
+    return [t.sheet_text(c) for c, t in zip(colours, jef_threads(colours))]

@@ -10,7 +10,13 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass
 
-__all__ = ["DesignFile", "MachineInfo", "StretchInfo", "GroupingInfo", "Conflict",
+from stitchswitch.layout.embroidery.jef_palette import JefThread
+
+#: the layout of fabrication.json (docs/fabrication.md): 2 adds each thread's ``jef_thread``;
+#: files without ``schema`` are layout 1
+SCHEMA = 2
+
+__all__ = ["SCHEMA", "DesignFile", "MachineInfo", "StretchInfo", "GroupingInfo", "Conflict",
            "HoopingFiles", "PlacedPatch", "Thread", "HoopingDoc", "Totals", "FabricationDoc"]
 
 
@@ -113,12 +119,25 @@ class PlacedPatch:
 
 @dataclass(frozen=True)
 class Thread:
+    """One colour block of the hooping's machine file, in file order. ``jef``: for a JEF file,
+    the palette thread the file stores for the block and the machine shows
+    (``embroidery.jef_palette.jef_threads``); None for other formats."""
+
     role: str
     colour: str
     patches: tuple[str, ...]
+    jef: JefThread | None = None
 
     def as_dict(self) -> dict:
-        return {"role": self.role, "colour": self.colour, "patches": list(self.patches)}
+        d = {"role": self.role, "colour": self.colour, "patches": list(self.patches)}
+        if self.jef is not None:
+            d["jef_thread"] = self.jef.as_dict()
+        return d
+
+    def sheet_name(self) -> str:
+        """The thread as the sheet and the workshop steps name it: the design colour, and for a
+        JEF the palette thread the machine shows."""
+        return self.colour if self.jef is None else self.jef.sheet_text(self.colour)
 
 
 @dataclass(frozen=True)
@@ -201,7 +220,7 @@ class FabricationDoc:
 
     def as_dict(self) -> dict:
         return {
-            "generator": self.generator, "version": self.version,
+            "schema": SCHEMA, "generator": self.generator, "version": self.version,
             "design": asdict(self.design), "mode": self.mode,
             "machine": asdict(self.machine), "format": self.embroidery_format,
             "stretch": self.stretch.as_dict(), "grouping": self.grouping.as_dict(),

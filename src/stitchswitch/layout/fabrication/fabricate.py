@@ -32,6 +32,7 @@ from stitchswitch import __version__
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.files.outdir import check_outdir, write_outdir
 from stitchswitch.layout.embroidery import export
+from stitchswitch.layout.embroidery.jef_palette import is_jef, jef_threads
 from stitchswitch.layout.embroidery.machines import catalogue
 from stitchswitch.layout.embroidery.stitches import StitchParams
 from stitchswitch.layout.fabrication.document import (
@@ -267,12 +268,19 @@ def _hooping_doc(k, h, hplan, specs, eta, names, threads, reason) -> HoopingDoc:
                                   diameter_mm=_r(specs[pid].diameter_mm),
                                   fill=_r(specs[pid].fill, 4), conductive=specs[pid].conductive)
                       for n, (pid, xy) in enumerate(zip(h.patch_ids, h.positions_mm), start=1)),
-        threads=tuple(Thread(t.role, t.colour, tuple(t.patches)) for t in hplan.threads),
+        threads=_threads(hplan.threads, names["embroidery"]),
         stitches=plan.stitch_count, trims=plan.trim_count, jumps=plan.jump_count,
         colour_changes=plan.color_changes, thread_length_m=_r(plan.thread_length_mm / 1000),
         time_min=_r(plan.sewing_time_min, 2), gap_crossings=threads.gap_crossings,
         gap_crossing_mm=_r(threads.gap_crossing_mm), hoop_reason=reason,
         small_pieces=plan.small_pieces)
+
+
+def _threads(uses, embroidery_file) -> tuple[Thread, ...]:
+    """The hooping's colour blocks, each with the palette thread a JEF file stores for it."""
+    jefs = (jef_threads([t.colour for t in uses]) if is_jef(embroidery_file)
+            else (None,) * len(uses))
+    return tuple(Thread(t.role, t.colour, tuple(t.patches), j) for t, j in zip(uses, jefs))
 
 
 def _doc(design, machine, fmt, options, eta, grouping, order, doc_hoops) -> FabricationDoc:

@@ -15,7 +15,6 @@ layout PNGs as data URIs (no external resources).
 from __future__ import annotations
 
 from stitchswitch.files.html_page import Figure, ItemList, Paragraph, Section, Table, page
-from stitchswitch.layout.embroidery.jef_palette import sheet_colour_names
 from stitchswitch.layout.embroidery.stitches import SMALL_PIECE_AREA_MM2
 from stitchswitch.layout.fabrication.document import FabricationDoc, HoopingDoc, Thread
 from stitchswitch.layout.fabrication.workshop import (
@@ -44,9 +43,9 @@ def md_escape(text: str) -> str:
     return "".join("\\" + c if c in _MARKDOWN_SPECIAL else c for c in str(text))
 
 
-def _thread_text(t: Thread, esc=str, colour: str | None = None) -> str:
+def _thread_text(t: Thread, esc=str) -> str:
     patches = ", ".join(map(esc, t.patches))
-    colour = t.colour if colour is None else colour
+    colour = t.sheet_name()
     if t.role == "conductive":
         return (f"conductive {colour} (conductive thread in the bobbin for this block: "
                 f"put the conductive bobbin in at the colour change before this block, and the "
@@ -70,8 +69,7 @@ def _hooping_lines(h: HoopingDoc, mode: str, esc=str) -> list[str]:
     if h.files.template_a4:
         lines.append(f"- 1:1 template to print at 100 % and mark through: `{h.files.template_a4}` "
                      f"(A4) or `{h.files.template_letter}` (Letter); check its 50 mm square")
-    lines += [f"- thread: {_thread_text(t, esc, c)}" for t, c in zip(h.threads, sheet_colour_names(
-        [t.colour for t in h.threads], h.files.embroidery))]
+    lines += [f"- thread: {_thread_text(t, esc)}" for t in h.threads]
     lines.append(f"- {h.stitches} stitches, {h.trims} trims, {h.colour_changes} colour "
                  f"change(s), {h.thread_length_m:.2f} m of top thread, about "
                  f"{_f(h.time_min)} min")

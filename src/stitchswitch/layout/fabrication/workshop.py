@@ -10,7 +10,6 @@ the reason for its hoop (``HoopingDoc.hoop_reason``), what to do about each fram
 """
 from __future__ import annotations
 
-from stitchswitch.layout.embroidery.jef_palette import sheet_colour_names
 from stitchswitch.layout.fabrication.document import Conflict, FabricationDoc, HoopingDoc
 
 __all__ = ["LEGEND", "summary_rows", "method_rows", "orientation_text", "colour_stops",
@@ -118,7 +117,7 @@ def colour_stops(h: HoopingDoc, esc=str) -> list[str]:
     """What to do before sewing and at every colour stop of the hooping's file, in order; each
     thread named as the sheet names it (for a JEF, the palette thread the machine shows)."""
     threads = h.threads
-    names = sheet_colour_names([t.colour for t in threads], h.files.embroidery)
+    names = [t.sheet_name() for t in threads]
     out = []
     first = threads[0]
     bobbin = ("the conductive bobbin in" if first.role == "conductive" else "a normal bobbin in")
