@@ -85,3 +85,39 @@ def test_bad_design_exit_2(tmp_path):
     r = run("check", bad)
     assert r.exit_code == 2 and "patches[0].piece: 'x' is not a piece" in r.output
     assert "Traceback" not in r.output
+
+
+def test_small_pieces_are_a_warning_as_fabricate_gives_it(tmp_path):
+    """A d 100 p 0.6 patch has boundary slivers under 1 mm^2: check warns (text and --json)
+    with the count fabricate's sheet and fabrication.json give, and keeps exit code 0."""
+    from stitchswitch.layout.embroidery.stitches import small_pieces_text
+    from test_cli_fabricate import patch, write_design
+
+    design = write_design(tmp_path / "d.json", [patch("a", 80, 80, 100, 0.6),
+                                                patch("b", 220, 170, 24, 0.8)])
+    r = run("check", design)
+    assert r.exit_code == 0, r.output
+    warned = [line for line in r.output.splitlines() if line.startswith("warning: ")]
+    assert len(warned) == 1 and warned[0].startswith("warning: patch a: ")
+    assert r.output.splitlines()[-1] == ("2 patch(es) on 1 piece(s): no violation; small pieces "
+                                         "in 1 patch(es)")
+    j = run("check", design, "--json")
+    assert j.exit_code == 0
+    out = json.loads(j.output)
+    assert out["clean"] is True and out["violations"] == [] and out["warnings"] == 0
+    (w,) = out["small_pieces"]
+    assert (w["patch"], w["piece"], w["area_mm2"]) == ("a", "front", 1.0) and w["count"] > 0
+    assert w["message"] == f"patch a: {small_pieces_text(w['count'])}" == warned[0][9:]
+    f = run("fabricate", design, "-o", tmp_path / "fab")
+    assert f.exit_code == 0, f.output
+    doc = json.loads((tmp_path / "fab" / "fabrication.json").read_text())
+    counts = {p["id"]: 0 for h in doc["hoopings"] for p in h["patches"]}
+    counts["a"] = w["count"]
+    for h in doc["hoopings"]:
+        assert h["small_pieces"] == sum(counts[p["id"]] for p in h["patches"])
+        if h["small_pieces"]:
+            assert small_pieces_text(h["small_pieces"]) in (tmp_path / "fab" / "fabrication.md").read_text()
+    # a design without small pieces: no warning line, an empty list
+    clean = write_design(tmp_path / "c.json", [patch("b", 220, 170, 24, 0.8)])
+    assert "warning" not in run("check", clean).output
+    assert json.loads(run("check", clean, "--json").output)["small_pieces"] == []

@@ -9,6 +9,7 @@ import click
 
 from stitchswitch.cli import options
 from stitchswitch.layout.check.constraints import CheckLimits, check_design
+from stitchswitch.layout.check.small_pieces import small_piece_warnings
 from stitchswitch.layout.garment.design_io import load_design
 
 _DEFAULT = CheckLimits()
@@ -46,7 +47,8 @@ def check(design, as_json, blank_margin_mm, **limits):
     margin, spacing between patches, triangle sides and gaps the machine can form, hoop fit,
     that every patch can be hooped where it lies (the frame on the piece, or on its uncut
     blank: the design's blank_margin_mm), and pairs of patches whose hoop frames must press
-    one another (a warning). Each violation names its patch and a fix. Every error is
+    one another (a warning). Each violation names its patch and a fix. Patches with stitched
+    pieces under 1 mm^2 are warned about as fabricate's sheet does (not a violation). Every error is
     something fabricate refuses or the model cannot predict. Exit code 0 when clean,
     1 when there are violations, 2 for bad input."""
     lim = CheckLimits(**limits)
@@ -56,6 +58,7 @@ def check(design, as_json, blank_margin_mm, **limits):
     if blank_margin_mm is not None:
         d = dataclasses.replace(d, blank_margin_mm=blank_margin_mm)
     found = check_design(d, lim)
+    small = small_piece_warnings(d, lim)
     errors = sum(v.severity == "error" for v in found)
     if as_json:
         out = {"design": design, "patches": len(d.patches), "pieces": len(d.pieces),
@@ -63,14 +66,18 @@ def check(design, as_json, blank_margin_mm, **limits):
                "clean": not found,
                "errors": errors, "warnings": len(found) - errors,
                "violations": [dict(v.as_dict(), value=_number(v.value), limit=_number(v.limit))
-                              for v in found]}
+                              for v in found],
+               "small_pieces": [w.as_dict() for w in small]}
         click.echo(json.dumps(out, indent=2, allow_nan=False))
     else:
         if found:
             click.echo(_table(found))
+        for w in small:
+            click.echo(f"warning: {w.message}")
         click.echo(f"{len(d.patches)} patch(es) on {len(d.pieces)} piece(s): "
                    + ("no violation" if not found else
-                      f"{errors} error(s), {len(found) - errors} warning(s)"))
+                      f"{errors} error(s), {len(found) - errors} warning(s)")
+                   + (f"; small pieces in {len(small)} patch(es)" if small else ""))
     if found:
         click.get_current_context().exit(1)
 

@@ -2,6 +2,8 @@
 
 * ``constraints``: ``check_design(design, limits) -> list[Violation]``, ``CheckLimits``.
 * ``violation``: ``Violation`` (rule, severity, patches, pieces, value, limit, message, hint).
+* ``small_pieces``: ``small_piece_warnings(design, limits) -> list[SmallPieces]``: patches
+  with stitched pieces under 1 mm^2, a warning (not a violation) as fabricate's sheet gives.
 * ``design_point``: ``admissible(limits, hoops)``, ``for_machine(...)``: the rules an unplaced
   design (d, p) breaks wherever it goes, for inverse design.
 * ``rules/``: one module per rule, each ``check(design, limits, eta) -> list[Violation]``;

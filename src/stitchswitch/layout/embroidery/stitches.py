@@ -178,10 +178,22 @@ class StitchPlan:
         if any(t is CONDUCTIVE_THREAD for t in self.threads):
             notes.append(CONDUCTIVE_BOBBIN_NOTE)
         if self.small_pieces:
-            notes.append(f"warning: {self.small_pieces} piece(s) under {SMALL_PIECE_AREA_MM2:g} "
-                         "mm^2, a fill of a few needle holes (coarser triangles or a higher fill "
-                         "avoid them)")
+            notes.append(f"warning: {small_pieces_text(self.small_pieces)}")
         return notes
+
+
+def small_pieces(geom) -> int:
+    """How many of a patch geometry's pieces are under ``SMALL_PIECE_AREA_MM2``: sewn, but a
+    fill of a few needle holes that may not hold. The stitch plan, fabrication's sheet and the
+    constraint check all count them here."""
+    return int(np.count_nonzero(np.asarray(geom.areas_mm2) < SMALL_PIECE_AREA_MM2))
+
+
+def small_pieces_text(count: int) -> str:
+    """The one warning about ``count`` small pieces (``small_pieces``), with what avoids them."""
+    return (f"{count} stitched piece(s) under {SMALL_PIECE_AREA_MM2:g} mm^2, a fill of "
+            "a few needle holes that may not hold (coarser triangles, --resolution, or a higher "
+            "fill avoid them)")
 
 
 #: where the conductive bobbin goes in and when the normal one comes back
@@ -315,7 +327,7 @@ def plan_stitches(geom, prm: StitchParams | None = None,
         block = _Block(b, prm, [pieces[i] for i in idx], ext[idx], electrode, idx.tolist())
         block.sew(steps)
     b.finish(offset)
-    small = int(np.count_nonzero(np.asarray(geom.areas_mm2) < SMALL_PIECE_AREA_MM2))
+    small = small_pieces(geom)
     return StitchPlan(np.asarray(b.xy, dtype=float).reshape(-1, 2),
                       np.asarray(b.cmd, dtype=np.int8), tuple(threads),
                       prm.stitches_per_minute, np.asarray(b.tie, dtype=bool),

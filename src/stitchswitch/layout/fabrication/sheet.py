@@ -15,7 +15,7 @@ layout PNGs as data URIs (no external resources).
 from __future__ import annotations
 
 from stitchswitch.files.html_page import Figure, ItemList, Paragraph, Section, Table, page
-from stitchswitch.layout.embroidery.stitches import SMALL_PIECE_AREA_MM2
+from stitchswitch.layout.embroidery.stitches import small_pieces_text
 from stitchswitch.layout.fabrication.document import FabricationDoc, HoopingDoc, Thread
 from stitchswitch.layout.fabrication.workshop import (
     LEGEND,
@@ -74,9 +74,7 @@ def _hooping_lines(h: HoopingDoc, mode: str, esc=str) -> list[str]:
                  f"change(s), {h.thread_length_m:.2f} m of top thread, about "
                  f"{_f(h.time_min)} min")
     if h.small_pieces:
-        lines.append(f"- warning: {h.small_pieces} stitched piece(s) under "
-                     f"{SMALL_PIECE_AREA_MM2:g} mm^2, a fill of a few needle holes that may not "
-                     "hold (coarser triangles, --resolution, or a higher fill avoid them)")
+        lines.append(f"- warning: {small_pieces_text(h.small_pieces)}")
     if h.gap_crossings:
         lines.append(f"- {h.gap_crossings} thread crossing(s) over unstitched fabric "
                      f"({h.gap_crossing_mm:.1f} mm of thread): clip them after stitching")
