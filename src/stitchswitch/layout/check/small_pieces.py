@@ -3,14 +3,14 @@
 They are sewn, so this is a warning, not a violation (``check`` keeps its exit code); it is the
 same count and the same words as ``fabricate``'s sheet (``small_pieces`` in fabrication.json:
 the hooping's sum of its patches' counts) and ``patch``'s notes, from
-``stitches.small_pieces`` on the geometry the check's other rules judge (``rules.geometry``).
+``stitches.small_pieces`` on the geometry the check's other rules judge
+(``rules.geometry.tessellated``).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.check.rules.geometry import geometry
+from stitchswitch.layout.check.rules.geometry import tessellated
 from stitchswitch.layout.embroidery.stitches import SMALL_PIECE_AREA_MM2, small_pieces, small_pieces_text
 
 __all__ = ["SmallPieces", "small_piece_warnings"]
@@ -37,12 +37,5 @@ class SmallPieces:
 def small_piece_warnings(design, limits) -> list[SmallPieces]:
     """The patches of ``design`` with small pieces at ``limits.resolution_mm``, in design order
     (a patch that cannot be tessellated is the geometry rule's violation, not listed here)."""
-    out = []
-    for patch in design.patches:
-        g = geometry(patch, limits.resolution_mm)
-        if isinstance(g, InvalidInputError):
-            continue
-        n = small_pieces(g)
-        if n:
-            out.append(SmallPieces(patch.id, patch.piece, n))
-    return out
+    return [SmallPieces(patch.id, patch.piece, small_pieces(g))
+            for patch, g in tessellated(design, limits.resolution_mm) if small_pieces(g)]

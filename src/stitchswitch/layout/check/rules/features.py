@@ -19,8 +19,7 @@ import math
 
 import numpy as np
 
-from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.check.rules.geometry import geometry
+from stitchswitch.layout.check.rules.geometry import tessellated
 from stitchswitch.layout.check.violation import Violation
 
 SQRT3 = math.sqrt(3.0)
@@ -41,10 +40,7 @@ def feature_sizes(geom) -> tuple[float, float | None]:
 
 def check(design, limits, eta) -> list[Violation]:
     out = []
-    for patch in design.patches:
-        g = geometry(patch, limits.resolution_mm)
-        if isinstance(g, InvalidInputError):
-            continue                            # reported by the geometry rule
+    for patch, g in tessellated(design, limits.resolution_mm):   # the others: geometry rule
         side, gap = feature_sizes(g)
         ident = ((patch.id,), (patch.piece,))
         if side < limits.min_side_mm - 1e-9:

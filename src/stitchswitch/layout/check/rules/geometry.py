@@ -1,6 +1,7 @@
 """Rule ``geometry``: the patch can be tessellated at the check's resolution (for example, a
 composite core that holds no triangle, or a conductive triangle index past the last triangle,
-cannot). The geometries are shared with the feature rule through ``geometries``."""
+cannot). The geometries are shared with the feature rule and the small-pieces warning through
+``geometry`` (cached) and ``tessellated``."""
 from __future__ import annotations
 
 from stitchswitch.errors import InvalidInputError
@@ -30,6 +31,15 @@ def geometry(patch, resolution_mm):
         except InvalidInputError as exc:
             _cache[key] = exc
     return _cache[key]
+
+
+def tessellated(design, resolution_mm):
+    """(patch, geometry) for each patch of ``design`` that can be tessellated at
+    ``resolution_mm``, in design order (the others are this rule's violations)."""
+    for patch in design.patches:
+        g = geometry(patch, resolution_mm)
+        if not isinstance(g, InvalidInputError):
+            yield patch, g
 
 
 def check(design, limits, eta) -> list[Violation]:
