@@ -50,6 +50,18 @@ def test_pocket_outputs(pocket):
     assert (out / "preview.png").read_bytes().startswith(b"\x89PNG")
 
 
+def test_pocket_check_json_is_the_check_commands(pocket):
+    """check.json carries the same violations and small-pieces warnings as ``check --json``."""
+    out, _ = pocket
+    saved = json.loads((out / "check.json").read_text())
+    r = run("check", str(out / "design.json"), "--json")
+    assert r.exit_code in (0, 1), r.output
+    live = json.loads(r.output)
+    assert saved["clean"] == live["clean"]
+    assert saved["small_pieces"] == live["small_pieces"]
+    assert [v["rule"] for v in saved["violations"]] == [v["rule"] for v in live["violations"]]
+
+
 def test_pocket_meets_its_target(pocket):
     from stitchswitch import Patch, solve
 
