@@ -224,39 +224,33 @@ def _discover(designs, split, kp, title, effects=None):
 
 def detectability(case, designs, split, clean) -> dict:
     """How visible the hidden effect is at all: the starting model fitted to the NOISE-FREE
-    training rows (screening resolution, then polished, as the workflow's step 1) leaves the
-    part of the effect no recalibration absorbs, RSS_clean (mm^2). With the case's noise
-    (sigma^2 the mean of the per-quantity variances) that is the noncentrality lambda =
+    training rows as the workflow's step 1 fits it leaves the part of the effect no
+    recalibration absorbs, RSS_clean (mm^2; ``discovery.absorb.unabsorbed``). With the case's
+    noise (sigma^2 the mean of the per-quantity variances) that is the noncentrality lambda =
     RSS_clean / sigma^2 of the F test an oracle (the true effect, fitted exactly) would run,
     and ``power`` its probability of passing at the workflow's alpha / (number of candidates).
-    A case with low power cannot be identified by any test on this data."""
-    from scipy.stats import f as f_dist
-    from scipy.stats import ncf
-
-    from stitchswitch.reduced.calibration.evolution import search_material
+    A case with low power cannot be identified by any test on this data. ``bistable``: the
+    training designs whose true equilibrium moves under a round-off perturbation of the true
+    parameters (``synthetic.bistable_designs``); the oracle assumes that the true model
+    reproduces its data, which a fit started elsewhere may not on those."""
+    from stitchswitch.validation.discovery.absorb import oracle_power, unabsorbed
     from stitchswitch.validation.discovery.effects import LIBRARY
-    from stitchswitch.validation.discovery.evaluate import Evaluator
-    from stitchswitch.validation.discovery.fit import fit
-    from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
-    from stitchswitch.validation.discovery.synthetic import SIGMA_MM, START_MATERIAL
+    from stitchswitch.validation.discovery.space import BASE_FREE
+    from stitchswitch.validation.discovery.synthetic import SIGMA_MM, START_MATERIAL, bistable_designs
     from stitchswitch.validation.discovery.workflow import DiscoveryConfig
 
     config = DiscoveryConfig()
     tr = np.array(split) == "train"
     d_tr = [d for d, t in zip(designs, tr) if t]
     y = clean[tr]
-    ev = Evaluator()
-    base = ModelSpec(START_MATERIAL, None, BASE_FREE)
-    screen = ModelSpec(search_material(START_MATERIAL, config.screen_nodes), None, BASE_FREE)
-    fs = fit(screen, ev, d_tr, y, screen.encode(screen.start), max_nfev=config.fit_max_nfev)
-    fb = fit(base, ev, d_tr, y, fs.x, max_nfev=config.polish_max_nfev)
-    rss = float(np.sum((fb.predictions - y) ** 2))
+    rss = unabsorbed(d_tr, y, START_MATERIAL, config=config)["rss_clean_mm2"]
     sigma2 = float(np.mean((np.array(SIGMA_MM) * case["noise"]) ** 2))
     lam = rss / sigma2
-    n, k1 = y.size, base.size + 1
-    crit = f_dist.isf(config.alpha / len(LIBRARY), 1, n - k1)
+    source = case["source"]
+    flip = bistable_designs(d_tr, source, case["values"]) if source in LIBRARY else []
     return {"rss_clean_mm2": rss, "lambda": lam,
-            "power": float(ncf.sf(crit, 1, n - k1, lam)) if lam > 0 else 0.0}
+            "power": oracle_power(lam, y.size, len(BASE_FREE) + 1, config.alpha / len(LIBRARY)),
+            "bistable": flip}
 
 
 def run_case(case: dict, proposal: bool = True, trials: int = 3) -> dict:
