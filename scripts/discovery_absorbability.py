@@ -3,7 +3,7 @@
 For every library effect (and the control ``gravity_sag``) at a sweep of strengths: noise-free
 keypoints of the true model (``validation.discovery.synthetic``, the paper's 25 training
 designs), the starting model (the default material without hardening) recalibrated on them as
-the workflow's step 1 does (``validation.discovery.absorb.unabsorbed``), and the MSE it leaves,
+the workflow's step 1 does (``validation.discovery.synthetic.unabsorbed``), and the MSE it leaves,
 i.e. what no recalibration removes. Against the reference noise (mean sigma^2 per keypoint,
 ``SIGMA_MM``) that is chi2 = RSS_clean / sigma^2 (125 residuals), the oracle F test's
 noncentrality; its power at the workflow's alpha / 6 is printed beside it.
@@ -41,7 +41,7 @@ SWEEP = {
 
 
 def measure(effect: str, strengths) -> list[dict]:
-    from stitchswitch.validation.discovery.absorb import oracle_power, unabsorbed
+    from stitchswitch.validation.discovery.cv import oracle_power
     from stitchswitch.validation.discovery.effects import LIBRARY
     from stitchswitch.validation.discovery.space import BASE_FREE
     from stitchswitch.validation.discovery.synthetic import (
@@ -49,6 +49,7 @@ def measure(effect: str, strengths) -> list[dict]:
         START_MATERIAL,
         paper_designs,
         true_keypoints,
+        unabsorbed,
     )
     from stitchswitch.validation.discovery.workflow import DiscoveryConfig
 

@@ -164,6 +164,21 @@ def test_linearized_start_is_the_gauss_newton_step():
     assert x[-1] == pytest.approx(2.0) and spec.decode(x)[1]["hoop_bending"][0] == pytest.approx(2.0)
 
 
+def test_second_basin_finds_the_other_local_minimum_of_the_scanned_profile():
+    from stitchswitch.validation.discovery.fit import second_basin
+
+    # boundary_transition at 11.4 mm (the benchmark's x3 case): uncorrected, then corrected
+    raw = {0.0: 4.65, 2.0: 4.566, 3.13: 4.724, 4.9: 4.671, 7.67: 4.586, 12.0: 4.949}
+    cor = {0.0: 4.675, 2.0: 4.558, 3.13: 4.61, 4.9: 4.652, 7.67: 4.643, 12.0: 4.872}
+    table = [((v,), m) for v, m in raw.items()] + [((v,), m) for v, m in cor.items()]
+    (j,) = second_basin(table)
+    assert table[j] == ((7.67,), 4.586)          # the better of the two evaluations there
+    # one basin: nothing; signed profiles are read outwards from zero on each side
+    assert second_basin([((0.0,), 1.0), ((1.0,), 0.5), ((2.0,), 0.7), ((4.0,), 0.9)]) == []
+    signed = [((0.0,), 1.0), ((1.0,), 0.5), ((2.0,), 0.7), ((-1.0,), 0.9), ((-2.0,), 0.6)]
+    assert second_basin(signed) == [4]
+
+
 def test_signature_is_zero_to_probe_secant():
     spec = ModelSpec(START, "prestretch_loss")
     ev = Evaluator()
@@ -258,8 +273,8 @@ def test_the_truth_is_solved_as_the_fit_represents_it():
 
 
 def test_unabsorbed_is_zero_for_the_starting_physics_and_grows_with_an_effect():
-    from stitchswitch.validation.discovery.absorb import oracle_power, unabsorbed
-    from stitchswitch.validation.discovery.synthetic import true_keypoints
+    from stitchswitch.validation.discovery.cv import oracle_power
+    from stitchswitch.validation.discovery.synthetic import true_keypoints, unabsorbed
 
     designs = [(d, p) for d in TRAIN["train_d"] for p in TRAIN["train_fill"]]
     config = DiscoveryConfig(screen_nodes=None, fit_max_nfev=10, polish_max_nfev=2)

@@ -28,6 +28,12 @@ model could then not reproduce its own data at its own true parameters. ``bistab
 lists the designs whose equilibrium moves by more than ``BISTABLE_MM`` under a round-off
 perturbation of the true parameters; the dataset names them on its hidden-truth line.
 
+``unabsorbed(designs, clean, start)``: how much of a hidden effect a recalibration cannot
+absorb: the starting model fitted to NOISE-FREE keypoints of the truth as the workflow's step 1
+fits it; the RSS it leaves, over the noise variance, is the noncentrality of the F test an
+oracle would run (``cv.oracle_power``; the benchmark's detectability and the absorbability
+table of docs/discovery.md).
+
 The workflow starts from ``START_MATERIAL`` (the default material without hardening) and is not
 told the source: the file's ``# source:`` line says only that the data are synthetic; the truth
 is on a separate ``# hidden truth`` comment line, which the loader ignores.
@@ -46,7 +52,7 @@ from stitchswitch.validation.reference_truth import describe, true_material
 
 __all__ = ["TRUE_MATERIAL", "START_MATERIAL", "SIGMA_MM", "TRAIN_FILL", "TRAIN_D_MM", "N_VAL",
            "SOURCES", "draw_values", "paper_designs", "as_fitted", "true_keypoints",
-           "bistable_designs", "BISTABLE_MM", "dataset_text"]
+           "bistable_designs", "BISTABLE_MM", "unabsorbed", "dataset_text"]
 
 TRUE_MATERIAL = true_material(names=BASE_FREE).replace(w_log=0.0)
 START_MATERIAL = DEFAULT_MATERIAL.replace(w_log=0.0)
@@ -161,6 +167,26 @@ def _sag_item(item):
     popped = solve(Patch(d, p), material)
     kp, ok, _, res = solve_item((d, p, material, {"gravity_sag": values}, popped))
     return kp, ok or res <= NEAR_CONVERGED
+
+
+def unabsorbed(designs, clean, start, *, config=None) -> dict:
+    """{"rss_clean_mm2", "mse_clean_mm2", "solves"} of the starting model fitted to ``clean``
+    (n, 5) at ``designs`` from the material ``start``, with ``config``'s (a ``DiscoveryConfig``)
+    screening resolution and step budgets."""
+    from stitchswitch.validation.discovery.evaluate import Evaluator
+    from stitchswitch.validation.discovery.fit import fit
+    from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
+    from stitchswitch.validation.discovery.workflow import DiscoveryConfig, screen_spec
+
+    config = config or DiscoveryConfig()
+    y = np.asarray(clean, dtype=float)
+    ev = Evaluator()
+    base = ModelSpec(start, None, BASE_FREE)
+    screen = screen_spec(start, config.screen_nodes)
+    fs = fit(screen, ev, designs, y, screen.encode(screen.start), max_nfev=config.fit_max_nfev)
+    fb = fit(base, ev, designs, y, fs.x, max_nfev=config.polish_max_nfev) if screen != base else fs
+    rss = float(np.sum((fb.predictions - y) ** 2))
+    return {"rss_clean_mm2": rss, "mse_clean_mm2": rss / y.size, "solves": ev.calls}
 
 
 def dataset_text(source: str | None, values=(), *, seed: int, noise: bool = True,

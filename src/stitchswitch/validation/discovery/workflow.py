@@ -10,12 +10,15 @@ propose the samples that would decide.
    Optionally robust (``config.huber_c``: Huber's loss, ``robust``).
 2. **Screen** every library effect at the screening resolution: its sensitivity signature and
    the part recalibration cannot absorb (``signature``), a refit of all coefficients and the
-   effect (``fit.fit_effect``), and a cross-validation with one-step fold refits.
+   effect (``fit.fit_effect``), and a screening score: ``cross_validate`` with a fold budget of
+   one function evaluation, which takes no step, so it is the training MSE at the screening
+   resolution; it only picks the leaders.
 3. **Refine the leaders**: the ``config.refine`` best-screened candidates are polished and
-   cross-validated (``cv``) at full resolution. The starting model is re-polished from the
-   coefficients of every leader that would pass the F test (``fit.equal_footing``): both sides
-   of the nested comparison are fitted equally well, so an effect at zero strength cannot look
-   significant.
+   cross-validated (``cv``, fold refits of at most one step) at full resolution; a leader at
+   zero strength is the starting model and takes its cross-validation. The starting model is
+   re-polished from the coefficients of every leader that would pass the F test
+   (``fit.equal_footing``): both sides of the nested comparison are fitted equally well, so an
+   effect at zero strength cannot look significant.
 4. **Decide**: a candidate passes when it lowers the starting model's
    cross-validated error, its F test against the equally polished starting model gives p <
    alpha / (number of candidates), and its strength is not zero; the decision is about the
@@ -270,7 +273,11 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
     other effects whose unabsorbed signature correlates best with the residual left by
     ``first_screen`` (its screening-resolution fit) screened on top of it, the best one polished
     at full resolution and tested against the model with ``first`` re-polished on equal
-    footing (F test at alpha / (number of candidates left), CV below it, non-zero)."""
+    footing (F test at alpha / (number of candidates left), CV below it, non-zero). Each
+    second effect is fitted from the better of its two starts. The test is checked before the
+    re-polish (which can only lower the first model's RSS) and after it; a second effect that
+    fails it is returned without cross-validations (``cv_mse_mm2`` None): the CV cannot make
+    it pass."""
     from stitchswitch.validation.discovery.fit import Fit
 
     rss = lambda f: float(np.sum((f.predictions - m_fit) ** 2))      # noqa: E731
