@@ -164,6 +164,21 @@ def test_linearized_start_is_the_gauss_newton_step():
     assert x[-1] == pytest.approx(2.0) and spec.decode(x)[1]["hoop_bending"][0] == pytest.approx(2.0)
 
 
+def test_second_basin_finds_the_other_local_minimum_of_the_scanned_profile():
+    from stitchswitch.validation.discovery.fit import second_basin
+
+    # boundary_transition at 11.4 mm (the benchmark's x3 case): uncorrected, then corrected
+    raw = {0.0: 4.65, 2.0: 4.566, 3.13: 4.724, 4.9: 4.671, 7.67: 4.586, 12.0: 4.949}
+    cor = {0.0: 4.675, 2.0: 4.558, 3.13: 4.61, 4.9: 4.652, 7.67: 4.643, 12.0: 4.872}
+    table = [((v,), m) for v, m in raw.items()] + [((v,), m) for v, m in cor.items()]
+    (j,) = second_basin(table)
+    assert table[j] == ((7.67,), 4.586)          # the better of the two evaluations there
+    # one basin: nothing; signed profiles are read outwards from zero on each side
+    assert second_basin([((0.0,), 1.0), ((1.0,), 0.5), ((2.0,), 0.7), ((4.0,), 0.9)]) == []
+    signed = [((0.0,), 1.0), ((1.0,), 0.5), ((2.0,), 0.7), ((-1.0,), 0.9), ((-2.0,), 0.6)]
+    assert second_basin(signed) == [4]
+
+
 def test_signature_is_zero_to_probe_secant():
     spec = ModelSpec(START, "prestretch_loss")
     ev = Evaluator()
@@ -223,6 +238,54 @@ def test_drawn_strengths_lie_in_the_hidden_range():
         (v,) = draw_values(name, rng)
         lo, hi = effect.parameters[0].hidden
         assert lo <= v <= hi
+
+
+def test_the_truth_is_solved_as_the_fit_represents_it():
+    """The generator's noise-free keypoints are exactly the fit's prediction at the encoded
+    true parameters (the same cold solve), also where the released state is bistable
+    (tension_asymmetry < 0); a design is reported bistable only if a round-off move of the
+    true parameters changes its equilibrium."""
+    from stitchswitch.validation.discovery.evaluate import solve_item
+    from stitchswitch.validation.discovery.synthetic import (
+        BISTABLE_MM,
+        ROUND_OFF,
+        as_fitted,
+        bistable_designs,
+        true_keypoints,
+    )
+
+    designs = [(d, p) for d in TRAIN["train_d"] for p in TRAIN["train_fill"]]
+    for source, values in (("tension_asymmetry", (-0.05,)), ("hoop_bending", (3.0,)), (None, ())):
+        spec = ModelSpec(START, source)
+        x = spec.encode(TRUE, values)
+        clean, bad = true_keypoints(designs, source, values, material=TRUE)
+        assert bad == 0
+        assert np.array_equal(clean, Evaluator().one(spec, x, designs))
+        material, active = as_fitted(TRUE, source, values)
+        assert material.w_b_emb == 10.0 ** x[0] and (active == {} if source is None else
+                                                     active[source] == pytest.approx(values))
+        flipped = bistable_designs(designs, source, values, material=TRUE)
+        assert set(flipped) <= set(designs)
+        for design in flipped:      # the flag means what it says
+            runs = [solve_item((*design, *as_fitted(TRUE, source, values, shift), None))[0]
+                    for shift in (0.0, ROUND_OFF, -ROUND_OFF)]
+            assert max(np.max(np.abs(r - runs[0])) for r in runs[1:]) > BISTABLE_MM
+
+
+def test_unabsorbed_is_zero_for_the_starting_physics_and_grows_with_an_effect():
+    from stitchswitch.validation.discovery.cv import oracle_power
+    from stitchswitch.validation.discovery.synthetic import true_keypoints, unabsorbed
+
+    designs = [(d, p) for d in TRAIN["train_d"] for p in TRAIN["train_fill"]]
+    config = DiscoveryConfig(screen_nodes=None, fit_max_nfev=10, polish_max_nfev=2)
+    null = true_keypoints(designs, None, (), material=TRUE)[0]
+    hoop = true_keypoints(designs, "hoop_bending", (3.0,), material=TRUE)[0]
+    r0 = unabsorbed(designs, null, START, config=config)
+    r1 = unabsorbed(designs, hoop, START, config=config)
+    assert r0["rss_clean_mm2"] < 1e-3 < 0.1 < r1["rss_clean_mm2"]
+    assert r1["mse_clean_mm2"] == pytest.approx(r1["rss_clean_mm2"] / hoop.size)
+    assert oracle_power(0.0, 45, 6, 0.01) == 0.0
+    assert 0.0 < oracle_power(5.0, 45, 6, 0.01) < oracle_power(25.0, 45, 6, 0.01) < 1.0
 
 
 # ----------------------------------------------------------------------------- the proof, reduced
@@ -464,3 +527,30 @@ def test_forward_selection_finds_the_second_hidden_effect():
     assert out["p_value"] < out["threshold"] == pytest.approx(0.05)
     assert out["cv_mse_mm2"] < out["cv_mse_first_only_mm2"]
     assert out["parameters"]["H"] > 1.0
+
+
+def test_forward_selection_skips_the_cross_validations_of_a_second_effect_that_cannot_pass():
+    """Nothing hidden after prestretch_loss: the second effect's F test fails against the first
+    model before any re-polish (which could only lower the first model's RSS), so it is not
+    significant and its cross-validations are not run."""
+    from types import SimpleNamespace
+
+    from stitchswitch.validation.discovery.evaluate import solve_item
+    from stitchswitch.validation.discovery.synthetic import paper_designs
+    from stitchswitch.validation.discovery.workflow import _forward
+
+    rng = np.random.default_rng(43)
+    d_tr, _ = paper_designs(rng, 1, (30.0, 50.0, 70.0, 90.0), (0.6, 0.8, 1.0))
+    active = {"prestretch_loss": (0.35,)}
+    clean = np.array([solve_item((d, p, TRUE, active, None))[0] for d, p in d_tr])
+    m_tr = np.maximum(np.round(clean + rng.normal(0, 1, clean.shape) * np.array(SIGMA_MM), 2), 0.1)
+    ev = Evaluator()
+    spec = ModelSpec(START, "prestretch_loss")
+    f = fit(spec, ev, d_tr, m_tr, spec.encode(TRUE, (0.35,)), max_nfev=10)
+    first = SimpleNamespace(spec=spec, x=f.x, effect="prestretch_loss")
+    config = DiscoveryConfig(effects=("prestretch_loss", "fill_exponent"), folds=3,
+                             fit_max_nfev=8, cv_max_nfev=2, scan_points=3, permutations=300)
+    out = _forward(first, f, ev, d_tr, m_tr, fold_labels(d_tr, 3, 0), config)
+    assert not out["significant"]
+    assert out["p_value"] >= out["threshold"] or out["zero_strength"]
+    assert out["cv_mse_mm2"] is None and out["cv_mse_first_only_mm2"] is None

@@ -8,7 +8,7 @@ missing effect explains it, and how much the gap shrinks once it is added.
   ``signature``: sensitivity signatures; ``robust``: Huber's loss by pseudo-observations;
   ``proposal``: the next samples that best separate the leading models.
 * ``report``, ``figures``: the report (Markdown, HTML, JSON); ``synthetic``: SYNTHETIC datasets
-  with a hidden effect.
+  with a hidden effect, and how much of it a recalibration cannot absorb.
 * ``effects/``: the library of candidate effects.
 
 Imports ``reduced`` and ``validation.measured`` / ``metrics``.

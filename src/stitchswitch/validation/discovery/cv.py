@@ -15,6 +15,9 @@
 * ``f_test``: is the drop of the training residual sum of squares from adding m parameters
   larger than the noise explains? F = ((RSS0 - RSS1) / m) / (RSS1 / (n - k1)), the noise
   variance estimated from the larger model's residuals; p from the F(m, n - k1) distribution.
+* ``oracle_power``: the power of that F test with one extra parameter when the true effect
+  leaves a residual of noncentrality lambda that no recalibration absorbs (the benchmark's
+  detectability, the absorbability table of docs/discovery.md).
 * ``sign_flip_test``: one-sided randomization test that paired per-design differences have a
   positive mean (random sign flips, seeded).
 * ``within_noise``: which models' held-out losses are not significantly worse than the best
@@ -29,8 +32,8 @@ import numpy as np
 
 from stitchswitch.validation.discovery.fit import fit
 
-__all__ = ["fold_labels", "CrossValidation", "cross_validate", "f_test", "sign_flip_test",
-           "within_noise"]
+__all__ = ["fold_labels", "CrossValidation", "cross_validate", "f_test", "oracle_power",
+           "sign_flip_test", "within_noise"]
 
 
 def fold_labels(designs, k: int, seed: int) -> np.ndarray:
@@ -84,6 +87,17 @@ def f_test(rss0: float, rss1: float, n: int, k0: int, k1: int) -> tuple[float, f
         return 0.0, 1.0
     F = ((rss0 - rss1) / m) / (rss1 / dof)
     return float(F), float(f_dist.sf(F, m, dof))
+
+
+def oracle_power(lam: float, n: int, k1: int, alpha: float) -> float:
+    """P(F > F_crit(alpha; 1, n - k1)) for the noncentral F(1, n - k1, ``lam``): how often an
+    oracle's F test (n residuals, k1 parameters of the larger model) passes at level ``alpha``."""
+    from scipy.stats import f as f_dist
+    from scipy.stats import ncf
+
+    if lam <= 0:
+        return 0.0
+    return float(ncf.sf(f_dist.isf(alpha, 1, n - k1), 1, n - k1, lam))
 
 
 def sign_flip_test(diff, permutations: int = 10000, seed: int = 0) -> float:

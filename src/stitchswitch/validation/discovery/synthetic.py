@@ -18,6 +18,22 @@ plus at most one hidden *source*:
   coupling (``fem_reference``), started from the reduced equilibrium;
 * None: the starting model's physics only (a null dataset).
 
+The keypoints of a library source (or of None) are solved at the true parameters **as the fit
+represents them** (``as_fitted``: the material's free coefficients through the search vector's
+log10 and back, the effect's values through its probe scaling), the same cold solve from the
+released state that the fit's ``Evaluator`` runs. Solving the truth from the unencoded
+material instead differs from it at round-off level, and on designs whose released state is
+bistable (a negative ``tension_asymmetry``) that is enough to settle in another equilibrium: the
+model could then not reproduce its own data at its own true parameters. ``bistable_designs``
+lists the designs whose equilibrium moves by more than ``BISTABLE_MM`` under a round-off
+perturbation of the true parameters; the dataset names them on its hidden-truth line.
+
+``unabsorbed(designs, clean, start)``: how much of a hidden effect a recalibration cannot
+absorb: the starting model fitted to NOISE-FREE keypoints of the truth as the workflow's step 1
+fits it; the RSS it leaves, over the noise variance, is the noncentrality of the F test an
+oracle would run (``cv.oracle_power``; the benchmark's detectability and the absorbability
+table of docs/discovery.md).
+
 The workflow starts from ``START_MATERIAL`` (the default material without hardening) and is not
 told the source: the file's ``# source:`` line says only that the data are synthetic; the truth
 is on a separate ``# hidden truth`` comment line, which the loader ignores.
@@ -35,7 +51,8 @@ from stitchswitch.validation.discovery.space import BASE_FREE
 from stitchswitch.validation.reference_truth import describe, true_material
 
 __all__ = ["TRUE_MATERIAL", "START_MATERIAL", "SIGMA_MM", "TRAIN_FILL", "TRAIN_D_MM", "N_VAL",
-           "SOURCES", "draw_values", "paper_designs", "true_keypoints", "dataset_text"]
+           "SOURCES", "draw_values", "paper_designs", "as_fitted", "true_keypoints",
+           "bistable_designs", "BISTABLE_MM", "unabsorbed", "dataset_text"]
 
 TRUE_MATERIAL = true_material(names=BASE_FREE).replace(w_log=0.0)
 START_MATERIAL = DEFAULT_MATERIAL.replace(w_log=0.0)
@@ -50,6 +67,11 @@ FEM_POISSON = 0.3
 #: was shown, or a stiff hardening term stalled Newton at its round-off floor) is accepted for
 #: data generation; it equals the solver's default tolerance.
 NEAR_CONVERGED = 1e-9
+#: A design whose keypoints move by more than this (mm) when the true parameters are perturbed
+#: at round-off level (``ROUND_OFF`` in the log10 / probe units of the search vector) has two
+#: equilibria within reach of the same cold solve: it is bistable at round-off.
+BISTABLE_MM = 0.05
+ROUND_OFF = 1e-12
 
 
 def _source_effect(source: str):
@@ -85,6 +107,36 @@ def _fem(design, material):
     return (kp.h_mm, kp.r_a_mm, kp.z_a_mm, kp.r_b_mm, kp.z_b_mm), bool(sol.converged)
 
 
+def as_fitted(material: Material, source: str | None, values=(), shift: float = 0.0):
+    """(material, active effects) of the truth as the fit represents it: ``ModelSpec.encode``
+    then ``decode`` (the free coefficients through log10, the effect values through their
+    probe), every search coordinate moved by ``shift`` (0: none)."""
+    from stitchswitch.validation.discovery.space import ModelSpec
+
+    spec = ModelSpec(material, source, BASE_FREE)
+    x = spec.encode(material, tuple(values)) + shift
+    return spec.decode(x)
+
+
+def _library_items(designs, material, source, values, shift=0.0):
+    material, active = as_fitted(material, source, values, shift)
+    return [(float(d), float(p), material, active, None) for d, p in designs]
+
+
+def bistable_designs(designs, source: str | None, values=(), material: Material = TRUE_MATERIAL,
+                     executor=None) -> list[tuple[float, float]]:
+    """The designs (of a library source or None) whose keypoints move by more than
+    ``BISTABLE_MM`` when every coordinate of the true search vector is moved by
+    +-``ROUND_OFF``: two equilibria within reach of the same solve."""
+    from stitchswitch.validation.discovery.evaluate import solve_item
+
+    mapper = executor.map if executor is not None else (lambda f, it: [f(i) for i in it])
+    runs = [np.array([kp for kp, *_ in mapper(solve_item, _library_items(
+        designs, material, source, values, shift))]) for shift in (0.0, ROUND_OFF, -ROUND_OFF)]
+    moved = np.max(np.abs(np.stack(runs[1:]) - runs[0]), axis=(0, 2))
+    return [tuple(map(float, d)) for d, m in zip(designs, moved) if m > BISTABLE_MM]
+
+
 def true_keypoints(designs, source: str | None = None, values=(), material: Material = TRUE_MATERIAL,
                    executor=None) -> tuple[np.ndarray, int]:
     """(n, 5) noise-free keypoints of the true model and the number of solves that are neither
@@ -97,8 +149,7 @@ def true_keypoints(designs, source: str | None = None, values=(), material: Mate
     elif source == "gravity_sag":
         out = mapper(_sag_item, [(float(d), float(p), material, tuple(values)) for d, p in designs])
     else:
-        active = {} if source is None else {source: tuple(values)}
-        items = [(float(d), float(p), material, active, None) for d, p in designs]
+        items = _library_items(designs, material, source, values)
         out = [(kp, ok or res <= NEAR_CONVERGED) for kp, ok, _, res in mapper(solve_item, items)]
     return np.array([kp for kp, _ in out], dtype=float), sum(not ok for _, ok in out)
 
@@ -116,6 +167,26 @@ def _sag_item(item):
     popped = solve(Patch(d, p), material)
     kp, ok, _, res = solve_item((d, p, material, {"gravity_sag": values}, popped))
     return kp, ok or res <= NEAR_CONVERGED
+
+
+def unabsorbed(designs, clean, start, *, config=None) -> dict:
+    """{"rss_clean_mm2", "mse_clean_mm2", "solves"} of the starting model fitted to ``clean``
+    (n, 5) at ``designs`` from the material ``start``, with ``config``'s (a ``DiscoveryConfig``)
+    screening resolution and step budgets."""
+    from stitchswitch.validation.discovery.evaluate import Evaluator
+    from stitchswitch.validation.discovery.fit import fit
+    from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
+    from stitchswitch.validation.discovery.workflow import DiscoveryConfig, screen_spec
+
+    config = config or DiscoveryConfig()
+    y = np.asarray(clean, dtype=float)
+    ev = Evaluator()
+    base = ModelSpec(start, None, BASE_FREE)
+    screen = screen_spec(start, config.screen_nodes)
+    fs = fit(screen, ev, designs, y, screen.encode(screen.start), max_nfev=config.fit_max_nfev)
+    fb = fit(base, ev, designs, y, fs.x, max_nfev=config.polish_max_nfev) if screen != base else fs
+    rss = float(np.sum((fb.predictions - y) ** 2))
+    return {"rss_clean_mm2": rss, "mse_clean_mm2": rss / y.size, "solves": ev.calls}
 
 
 def dataset_text(source: str | None, values=(), *, seed: int, noise: bool = True,
@@ -151,6 +222,10 @@ def dataset_text(source: str | None, values=(), *, seed: int, noise: bool = True
     else:
         names = [p.name for p in _source_effect(source).parameters]
         truth = source + " " + ", ".join(f"{n}={v:g}" for n, v in zip(names, values))
+    if source not in SOURCES:
+        flip = bistable_designs(train + val, source, values, material, executor)
+        truth += (f"; {len(flip)} design(s) bistable at round-off: "
+                  + " ".join(f"({d:g}, {p:g})" for d, p in flip)) if flip else ""
     if material != TRUE_MATERIAL:
         truth += "; material changed: " + ", ".join(
             f"{k}={v:g}" for k, v in material.as_dict().items()

@@ -10,12 +10,15 @@ propose the samples that would decide.
    Optionally robust (``config.huber_c``: Huber's loss, ``robust``).
 2. **Screen** every library effect at the screening resolution: its sensitivity signature and
    the part recalibration cannot absorb (``signature``), a refit of all coefficients and the
-   effect (``fit.fit_effect``), and a cross-validation with one-step fold refits.
+   effect (``fit.fit_effect``), and a screening score: ``cross_validate`` with a fold budget of
+   one function evaluation, which takes no step, so it is the training MSE at the screening
+   resolution; it only picks the leaders.
 3. **Refine the leaders**: the ``config.refine`` best-screened candidates are polished and
-   cross-validated (``cv``) at full resolution. The starting model is re-polished from the
-   coefficients of every leader that would pass the F test (``fit.equal_footing``): both sides
-   of the nested comparison are fitted equally well, so an effect at zero strength cannot look
-   significant.
+   cross-validated (``cv``, fold refits of at most one step) at full resolution; a leader at
+   zero strength is the starting model and takes its cross-validation. The starting model is
+   re-polished from the coefficients of every leader that would pass the F test
+   (``fit.equal_footing``): both sides of the nested comparison are fitted equally well, so an
+   effect at zero strength cannot look significant.
 4. **Decide**: a candidate passes when it lowers the starting model's
    cross-validated error, its F test against the equally polished starting model gives p <
    alpha / (number of candidates), and its strength is not zero; the decision is about the
@@ -56,7 +59,7 @@ from stitchswitch.validation.measured import QUANTITIES, MeasuredData
 from stitchswitch.validation.metrics import split_metrics
 
 __all__ = ["DiscoveryConfig", "Candidate", "Discovery", "discover", "stage_count", "FORWARD_FITS",
-           "lead_candidate"]
+           "lead_candidate", "screen_spec"]
 
 #: Forward selection fits this many second effects: those whose unabsorbed signature (on top of
 #: the first effect) correlates best with the residual the first one leaves. Fitting all five
@@ -88,7 +91,7 @@ class DiscoveryConfig:
     de_generations: int = 0
     de_popsize: int = 6
     fit_max_nfev: int = 25
-    cv_max_nfev: int = 3
+    cv_max_nfev: int = 2
     scan_points: int = 5
     permutations: int = 2000
     screen_nodes: int | None = 150
@@ -218,7 +221,8 @@ def _start_fit(base, ev, designs, measured, start, config, executor):
     return fit(base, ev, designs, measured, x0, max_nfev=config.fit_max_nfev)
 
 
-def _screen_spec(start: Material, nodes) -> ModelSpec:
+def screen_spec(start: Material, nodes) -> ModelSpec:
+    """The starting model at the screening resolution (``nodes``; None: ``start``'s own)."""
     from stitchswitch.reduced.calibration.evolution import search_material
 
     return ModelSpec(search_material(start, nodes) if nodes else start, None, BASE_FREE)
@@ -269,7 +273,11 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
     other effects whose unabsorbed signature correlates best with the residual left by
     ``first_screen`` (its screening-resolution fit) screened on top of it, the best one polished
     at full resolution and tested against the model with ``first`` re-polished on equal
-    footing (F test at alpha / (number of candidates left), CV below it, non-zero)."""
+    footing (F test at alpha / (number of candidates left), CV below it, non-zero). Each
+    second effect is fitted from the better of its two starts. The test is checked before the
+    re-polish (which can only lower the first model's RSS) and after it; a second effect that
+    fails it is returned without cross-validations (``cv_mse_mm2`` None): the CV cannot make
+    it pass."""
     from stitchswitch.validation.discovery.fit import Fit
 
     rss = lambda f: float(np.sum((f.predictions - m_fit) ** 2))      # noqa: E731
@@ -290,7 +298,7 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
         sig = sigs[name]
         f, _ = fit_effect(spec, ev, d_tr, m_fit, first_screen, J, sig,
                           max_nfev=config.screen_max_nfev, scan_points=config.scan_points + 2,
-                          refine_both=True)
+                          refine_both=False)
         cv = cross_validate(spec, ev, d_tr, m_fit, f.x, labels, max_nfev=1)
         if best is None or cv.score_mm2 < best[2]:
             best = (name, f, cv.score_mm2)
@@ -303,19 +311,28 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
     m_left = len(config.effects) - 1
     threshold = config.alpha / m_left
     passes = lambda r0, f: f_test(r0, rss(f), m_fit.size, base_f.size, f.spec.size)[1] < threshold  # noqa: E731
+    zero = _zero(spec_f, ff.x)
+    out = {"effect": name, "after": first.effect, "threshold": threshold, "zero_strength": zero,
+           "parameters": spec_f.describe(ff.x), "spec": spec_f, "x": ff.x}
+    if zero or not passes(rss(fit_a), ff):
+        # cannot pass: the equal-footing re-polish only lowers the first model's RSS, so the
+        # test fails whatever the cross-validations say; they are not run
+        F, p = f_test(rss(fit_a), rss(ff), m_fit.size, base_f.size, spec_f.size)
+        return {**out, "f_statistic": F, "p_value": p, "cv_mse_mm2": None,
+                "cv_mse_first_only_mm2": None, "significant": False}
     fit_a, _ = equal_footing(base_f, ev, d_tr, m_fit, fit_a, {name: ff}, passes,
                              max_nfev=config.fit_max_nfev,
                              screen_spec=base_c if base_c != base_f else None,
                              polish_max_nfev=config.polish_max_nfev)
+    F, p = f_test(rss(fit_a), rss(ff), m_fit.size, base_f.size, spec_f.size)
+    if p >= threshold:
+        return {**out, "f_statistic": F, "p_value": p, "cv_mse_mm2": None,
+                "cv_mse_first_only_mm2": None, "significant": False}
     cv_a = cross_validate(base_f, ev, d_tr, m_fit, fit_a.x, labels, max_nfev=config.cv_max_nfev)
     cv_f = cross_validate(spec_f, ev, d_tr, m_fit, ff.x, labels, max_nfev=config.cv_max_nfev)
-    F, p = f_test(rss(fit_a), rss(ff), m_fit.size, base_f.size, spec_f.size)
-    zero = _zero(spec_f, ff.x)
-    return {"effect": name, "after": first.effect, "f_statistic": F, "p_value": p,
-            "threshold": threshold, "cv_mse_mm2": cv_f.score_mm2,
-            "cv_mse_first_only_mm2": cv_a.score_mm2, "zero_strength": zero,
-            "significant": bool(p < threshold and cv_f.score_mm2 < cv_a.score_mm2 and not zero),
-            "parameters": spec_f.describe(ff.x), "spec": spec_f, "x": ff.x}
+    return {**out, "f_statistic": F, "p_value": p, "cv_mse_mm2": cv_f.score_mm2,
+            "cv_mse_first_only_mm2": cv_a.score_mm2,
+            "significant": bool(cv_f.score_mm2 < cv_a.score_mm2)}
 
 
 def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = DiscoveryConfig(), *,
@@ -349,7 +366,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     n_res = m_tr.size
     ev = Evaluator(executor)
     base = ModelSpec(start, None, BASE_FREE)
-    screen = _screen_spec(start, config.screen_nodes)
+    screen = screen_spec(start, config.screen_nodes)
     lo, hi = base.bounds()
     labels = fold_labels(d_tr, config.folds, config.seed)
     m = len(config.effects)
@@ -422,7 +439,10 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
             pred = ev.one(f.spec, x0, d_tr)
             f = type(f)(f.spec, x0, pred, float(np.mean((pred - m_fit) ** 2)), f.evaluations,
                         ev.n_uncertified(f.spec, x0, d_tr), "no improvement over the starting model")
-        cvr = cross_validate(f.spec, ev, d_tr, m_fit, f.x, labels, max_nfev=config.cv_max_nfev)
+        # a leader at zero strength is the starting model itself: it cannot pass, and its
+        # held-out error is the starting model's (no fold refits run for it)
+        cvr = cv0 if _zero(f.spec, f.x) else cross_validate(
+            f.spec, ev, d_tr, m_fit, f.x, labels, max_nfev=config.cv_max_nfev)
         c = screened[name]
         final[name] = _candidate(name, f.spec, f, m_fit, cvr, cv0, c.signature,
                                  c.fit_start, rss0, base.size, m, config, ev, d_va, m_va,

@@ -44,6 +44,6 @@ EFFECT = register_effect(Effect(
             "the embroidered properties fade out over a finite width instead of jumping at R_b: "
             "a linear ramp of width_mm (rest frame) centred on the boundary. Zero width is the "
             "starting model.",
-    parameters=(EffectParameter("width_mm", "mm", 0.0, 12.0, probe=2.0, hidden=(8.0, 11.0)),),
+    parameters=(EffectParameter("width_mm", "mm", 0.0, 12.0, probe=2.0, hidden=(10.0, 11.4)),),
     grid=grid,
 ))

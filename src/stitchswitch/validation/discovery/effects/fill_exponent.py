@@ -38,7 +38,7 @@ EFFECT = register_effect(Effect(
             "instead of the paper's p^2 (for instance because overlapping stitches at high fill "
             "add less than their area). Nothing changes at p = 1; delta = 0 is the starting "
             "model.",
-    parameters=(EffectParameter("delta", "1", -1.5, 3.0, probe=0.25, hidden=(1.5, 2.5),
+    parameters=(EffectParameter("delta", "1", -1.5, 3.0, probe=0.25, hidden=(1.5, 2.0),
                                 signed=True),),
     grid=grid,
 ))

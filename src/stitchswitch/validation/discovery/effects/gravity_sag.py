@@ -25,6 +25,6 @@ EFFECT = register_control(Effect(
     summary="(control, not in the library) the patch's own weight lowers the dome",
     physics="A potential energy g m z per node, ring mass proportional to R, embroidery "
             f"{EMBROIDERY_MASS_RATIO:g}x heavier than the fabric at p = 1.",
-    parameters=(EffectParameter("g", "1", 0.0, 1e-4, probe=1e-6, hidden=(2e-6, 5e-6)),),
+    parameters=(EffectParameter("g", "1", 0.0, 1e-4, probe=1e-6, hidden=(2.5e-7, 5e-7)),),
     terms=lambda patch, material, v: (gravity.term(v[0], patch.fill, EMBROIDERY_MASS_RATIO),),
 ))

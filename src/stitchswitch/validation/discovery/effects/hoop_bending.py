@@ -17,6 +17,6 @@ EFFECT = register_effect(Effect(
             "bending of its parallels, kappa_t = sin(phi)/r. Added per segment as "
             "H w_b dz^2 / (8 l rbar), the discrete form of the shell reference's hoop term; "
             "H = 1 is an isotropic shell, H = 0 the starting model.",
-    parameters=(EffectParameter("H", "1", 0.0, 50.0, probe=1.0, hidden=(2.0, 4.0)),),
+    parameters=(EffectParameter("H", "1", 0.0, 50.0, probe=1.0, hidden=(0.5, 1.0)),),
     terms=lambda patch, material, v: (hoop_bending.term(v[0]),),
 ))

@@ -22,6 +22,6 @@ EFFECT = register_effect(Effect(
             "pre-stretch eta_eff below the nominal eta: the relaxed patch radius is d / 2 eta_eff "
             "and the rest metric 1 + (eta_eff - 1) p^2. Zero loss is the starting model.",
     parameters=(EffectParameter("loss", "fraction of (eta - 1)", 0.0, 0.7, probe=0.05,
-                                hidden=(0.3, 0.4)),),
+                                hidden=(0.3, 0.5)),),
     material=material,
 ))

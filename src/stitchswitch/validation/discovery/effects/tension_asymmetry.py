@@ -20,6 +20,6 @@ EFFECT = register_effect(Effect(
             "of w T^2 per hinge. kappa > 0 curls towards the dome; kappa = 0 is the starting "
             "model.",
     parameters=(EffectParameter("kappa_per_mm", "1/mm", -0.2, 0.2, probe=0.01,
-                                hidden=(-0.06, -0.04), signed=True),),
+                                hidden=(-0.0075, -0.0075), signed=True),),
     terms=lambda patch, material, v: (natural_curvature.term(v[0], patch.fill),),
 ))
