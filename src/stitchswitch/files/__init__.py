@@ -22,6 +22,8 @@
 * ``shown``: ``show`` / ``show_all`` / ``clip``, input values shortened for error messages (every
   message that repeats a value uses them).
 * ``extensions``: ``check_extension``, an output path's extension checked before any work.
+* ``figures``: ``plot_bytes``, a matplotlib figure as PNG / SVG / PDF bytes without date or
+  version stamps (byte-reproducible), the figure closed after.
 
 Nothing here knows about the model: every other sub-package may import it.
 """

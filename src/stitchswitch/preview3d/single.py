@@ -20,11 +20,10 @@ by how much).
 """
 from __future__ import annotations
 
-import io
-
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.files.extensions import check_extension
+from stitchswitch.files.figures import plot_bytes
 from stitchswitch.preview3d.profiles import PatchProfile
 
 FIGURE_FORMATS = (".png", ".svg")
@@ -95,12 +94,7 @@ def figure_bytes(profile: PatchProfile, fmt: str = "png", state: str = "up",
         ax.text(0.01, 0.02 if sign > 0 else 0.98, caption, transform=ax.transAxes, fontsize=7,
                 color="0.35", va="bottom" if sign > 0 else "top")
         ax.legend(loc="upper right" if sign > 0 else "lower right", fontsize=7, frameon=False)
-        buf = io.BytesIO()
-        fmt_name = fmt.lstrip(".")
-        fig.savefig(buf, format=fmt_name, bbox_inches="tight", pad_inches=0.1,
-                    metadata={"Date": None} if fmt_name == "svg" else {"Software": None})
-        plt.close(fig)
-    return buf.getvalue()
+        return plot_bytes(fig, fmt.lstrip("."), bbox_inches="tight", pad_inches=0.1)
 
 
 def write_figure(path, profile: PatchProfile, state: str = "up", material_name: str = "default",
@@ -186,7 +180,4 @@ def section_bytes(scene, patch_id: str, size: tuple[int, int] = (1200, 600),
                      f"{patch.profile.diameter_mm:g} mm, fill = {patch.profile.fill:g}, popped "
                      f"{patch.state}; {height_note(exaggerate)}", fontsize=10)
         ax.legend(loc="best", fontsize=8, frameon=False)
-        buf = io.BytesIO()
-        fig.savefig(buf, format="png", metadata={"Software": None})
-        plt.close(fig)
-    return buf.getvalue()
+        return plot_bytes(fig)

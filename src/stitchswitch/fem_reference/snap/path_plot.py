@@ -8,9 +8,8 @@ atomically (``files.atomic``).
 """
 from __future__ import annotations
 
-import io
-
 from stitchswitch.files.atomic import atomic_write_bytes
+from stitchswitch.files.figures import plot_bytes
 
 __all__ = ["curve_png", "write_curve_png"]
 
@@ -34,10 +33,7 @@ def curve_png(curve, verdict: str) -> bytes:
     ax.invert_xaxis()
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", metadata={"Software": None})
-    plt.close(fig)
-    return buf.getvalue()
+    return plot_bytes(fig)
 
 
 def write_curve_png(path, curve, verdict: str) -> None:

@@ -13,6 +13,7 @@ import numpy as np
 
 from stitchswitch.fem_reference.revolution.params import DEFAULT_SHELL, ShellParams
 from stitchswitch.fem_reference.snap.states import bistability
+from stitchswitch.files.figures import plot_bytes
 from stitchswitch.reduced.model.params import DEFAULT_MATERIAL, Material, Patch
 
 VERDICTS = ("flat", "spring-back", "bistable", "uncertain")
@@ -54,7 +55,6 @@ def bistability_map(diameters_mm, fills, material: Material = DEFAULT_MATERIAL,
 
 def map_png(result: BistabilityMap) -> bytes:
     """The regions drawn over (d, p) as PNG bytes (matplotlib, offscreen)."""
-    import io
 
     import matplotlib
 
@@ -75,10 +75,7 @@ def map_png(result: BistabilityMap) -> bytes:
     ax.set_ylabel("fill p")
     ax.set_title(f"shell of revolution, natural curvature {result.kappa0_per_mm:g} /mm")
     fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", metadata={"Software": None})
-    plt.close(fig)
-    return buf.getvalue()
+    return plot_bytes(fig)
 
 
 def _edges(x: np.ndarray) -> np.ndarray:

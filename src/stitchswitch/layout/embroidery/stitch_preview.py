@@ -2,13 +2,13 @@
 dashed grey lines, trims as black crosses, and the patch outline if given."""
 from __future__ import annotations
 
-import io
 import pathlib
 
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.files.atomic import atomic_write_bytes
+from stitchswitch.files.figures import plot_bytes
 from stitchswitch.layout.embroidery import stitches as st
 
 
@@ -53,11 +53,7 @@ def render(plan: st.StitchPlan, fmt: str = "png", diameter_mm: float | None = No
         ax.set_title(f"{plan.stitch_count} stitches, {plan.trim_count} trims, "
                      f"{len(plan.threads)} thread(s)")
         ax.legend(loc="upper right", fontsize=7)
-        buf = io.BytesIO()
-        meta = {"Date": None} if fmt == "svg" else {"Software": None}
-        fig.savefig(buf, format=fmt, dpi=200, metadata=meta)
-        plt.close(fig)
-    return buf.getvalue()
+        return plot_bytes(fig, fmt, dpi=200)
 
 
 def write_preview(path, plan: st.StitchPlan, diameter_mm: float | None = None) -> None:

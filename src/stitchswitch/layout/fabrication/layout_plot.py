@@ -14,11 +14,10 @@ deterministic (fixed SVG hash salt, no dates).
 """
 from __future__ import annotations
 
-import io
-
 import numpy as np
 
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.files.figures import NO_STAMP, plot_bytes
 
 
 def _pyplot():
@@ -29,22 +28,15 @@ def _pyplot():
 
 
 #: metadata that would make the bytes depend on the day or the library build, left out
-_NO_STAMP = {"svg": {"Date": None}, "png": {"Software": None},
-             "pdf": {"CreationDate": None, "Producer": None, "Creator": None}}
-
-
 def _save(fig, formats) -> dict[str, bytes]:
     """The figure in every format of ``formats`` (png, svg, pdf); the figure is closed."""
     out = {}
     try:
         for fmt in formats:
-            if fmt not in _NO_STAMP:
+            if fmt not in NO_STAMP:
                 raise InvalidInputError(f"unsupported layout format {fmt!r}; supported: "
-                                        + ", ".join(_NO_STAMP))
-            buf = io.BytesIO()
-            meta = _NO_STAMP[fmt]
-            fig.savefig(buf, format=fmt, dpi=120, metadata=meta)
-            out[fmt] = buf.getvalue()
+                                        + ", ".join(NO_STAMP))
+            out[fmt] = plot_bytes(fig, fmt, close=False, dpi=120)
     finally:
         _pyplot().close(fig)
     return out

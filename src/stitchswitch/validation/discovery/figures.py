@@ -10,10 +10,9 @@
 """
 from __future__ import annotations
 
-import io
-
 import numpy as np
 
+from stitchswitch.files.figures import plot_bytes
 from stitchswitch.validation.measured import QUANTITIES
 
 __all__ = ["residual_maps", "ranking", "signatures", "before_after", "all_figures", "FIGURES"]
@@ -33,10 +32,7 @@ def _plt():
 
 
 def _png(fig) -> bytes:
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", metadata={"Software": None})
-    _plt().close(fig)
-    return buf.getvalue()
+    return plot_bytes(fig)
 
 
 def _map(ax, d, p, values, limit, marker="o", label=None):
