@@ -24,6 +24,7 @@ from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import canvas, live_check
 from stitchswitch.studio.profile_plot import profile_svg
 from stitchswitch.studio.scene3d import PlotterSync
+from stitchswitch.studio.view_channel import ViewChannel
 
 #: the pointer expression passed to the canvas handlers: position on the SVG and its size, px,
 #: then the Shift key
@@ -35,7 +36,9 @@ WHEEL = POINTER[:-len(", $event.shiftKey]")] + ", $event.deltaY]"
 ZOOM_STEP = 1.25
 #: the 3D scene is built this long after the panel: a flush only queues the panel's message,
 #: and the event loop must get to write it before the scene's serialization holds the loop
-SCENE_DELAY_S = 0.05
+SCENE_DELAY_S = 0.01
+#: the 3D view's name on the page (its full scene state is the state key ``scene_`` + it)
+VIEW_REF = "studio_view"
 READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_b_mm"),
                 ("z_b", "z_b_mm"))
 
@@ -68,6 +71,7 @@ def build_app(session, server=None):
     drag = {"id": None, "start": None}
     pending = {"check": None, "scene": None}
     camera = {"set": False}
+    sync_counts: dict = {}
     shown_last = [None, None]         # the design and check verdicts the 3D view was sent
 
     def push_readout() -> None:
@@ -104,24 +108,31 @@ def build_app(session, server=None):
         state.flush()
         session.write_autosave()
 
-    def push_scene() -> None:
-        pending["scene"] = None
+    def build_view() -> None:
+        """The scene and the view's actors, for ``ViewChannel.send``."""
         shown_last[:] = (session.state.design, colours.status_from_violations(session.violations))
         session.refresh_scene()
         t0, c0 = time.perf_counter(), time.process_time()
-        counts = view_sync.sync(session.scene3d, session.violations)
+        sync_counts.clear()
+        sync_counts.update(view_sync.sync(session.scene3d, session.violations))
         if not camera["set"]:
             pl.view_isometric()
             pl.reset_camera()
             camera["set"] = True
-        t1, c1 = time.perf_counter(), time.process_time()
-        ctrl.view_update()
-        sent = {"sync_s": t1 - t0, "sync_cpu_s": c1 - c0, "view_send_s": time.perf_counter() - t1,
-                "view_send_cpu_s": time.process_time() - c1}
-        # sent after the view's geometry, on the same websocket
-        state.timings = {k: round(1000 * v, 2) for k, v in (session.timings_s | sent).items()} | counts
+        session.timings_s["sync_s"] = time.perf_counter() - t0
+        session.timings_s["sync_cpu_s"] = time.process_time() - c0
+
+    def scene_sent(send_s: float, send_cpu_s: float) -> None:
+        """After the view's delta, on the same websocket: the timings and the scene stamp."""
+        sent = {"view_send_s": send_s, "view_send_cpu_s": send_cpu_s}
+        state.timings = ({k: round(1000 * v, 2) for k, v in (session.timings_s | sent).items()}
+                         | sync_counts)
         state.scene_stamp = session.state.changed
         state.flush()
+
+    def push_scene() -> None:
+        pending["scene"] = None
+        channel.send()
 
     def schedule_scene() -> None:
         """The 3D view after the panel has gone out, when the design or the check's verdicts
@@ -244,6 +255,11 @@ def build_app(session, server=None):
         except (InvalidInputError, StitchSwitchError) as exc:
             state.message = f"Error: {exc}"
 
+    @ctrl.trigger("studio_scene_loaded")
+    def scene_loaded():
+        """The page has loaded the scene in flight (vtk.js's afterSceneLoaded)."""
+        channel.loaded()
+
     @ctrl.trigger("studio_file")
     def exported_file(name):
         """The bytes of an exported file, for the page's download links."""
@@ -299,7 +315,7 @@ def build_app(session, server=None):
                   "diameter": 60.0, "fill": 0.5, "patch_state": "up", "readout_stamp": 0,
                   "selection": [], "composite_on": False, "core_d": 20.0, "core_fill": 0.9,
                   "conductive": "", "sizes": session.sizes, "size": session.size,
-                  "plan_k": 0, "plan_svg": "", "plan_counts": {}, "placing": None,
+                  "plan_k": 0, "plan_svg": "", "plan_counts": {}, "placing": None, "scene_stamp": 0,
                   "timings": {}})
 
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
@@ -416,10 +432,11 @@ def build_app(session, server=None):
                     # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js has
                     # the new geometry, its arrays fetched), counted for the benchmark and tests
                     view = vtk_widgets.VtkLocalView(
-                        pl.ren_win, before_scene_loaded="window.studioSceneBusy = true",
+                        pl.ren_win, ref=VIEW_REF, before_scene_loaded="window.studioSceneBusy = true",
                         after_scene_loaded="window.studioSceneBusy = false; "
-                                           "window.studioSceneLoads = (window.studioSceneLoads || 0) + 1")
-                    ctrl.view_update = view.update
+                                           "window.studioSceneLoads = (window.studioSceneLoads || 0) + 1;"
+                                           " trigger('studio_scene_loaded')")
+                    channel = ViewChannel(server, view, pl.ren_win, VIEW_REF, build_view, scene_sent)
                     ctrl.view_reset_camera = view.reset_camera
     push_panel()
     push_scene()

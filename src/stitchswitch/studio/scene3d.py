@@ -28,7 +28,7 @@ HEIGHT = "height (mm)"
 #: ``stitchswitch preview``'s (the same builder), a quarter of its triangles: the browser's
 #: software WebGL and trame-vtk's checksums of every array on every update scale with it
 VIEW_N_THETA = 32
-VIEW_RING_STEP = 2
+VIEW_RING_STEP = 6
 #: patch surfaces are drawn by this many actors, a patch always in the same one (by its id):
 #: trame-vtk serializes every actor on every update (about 1 ms of CPU each), so one actor per
 #: patch costs more than resending a few patches' arrays with the edited one
