@@ -17,8 +17,7 @@ from stitchswitch.reduced.design_space.cache import default_map
 from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import fabrication, inverse_panel, live_check
 from stitchswitch.studio.persist import Document, sidecar_path
-from stitchswitch.studio.profile_plot import profile_svg
-from stitchswitch.studio.readout import heights_mm, readout
+from stitchswitch.studio.readout import heights_mm, profile_svg, readout
 from stitchswitch.studio.session import Session
 from stitchswitch.studio.state import StudioState
 

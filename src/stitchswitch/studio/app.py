@@ -22,7 +22,7 @@ from stitchswitch.errors import InvalidInputError, StitchSwitchError
 from stitchswitch.preview3d import colours
 from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import canvas, live_check
-from stitchswitch.studio.profile_plot import profile_svg
+from stitchswitch.studio.readout import profile_svg
 from stitchswitch.studio.scene3d import PlotterSync
 from stitchswitch.studio.view_channel import ViewChannel
 
