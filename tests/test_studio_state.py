@@ -349,6 +349,54 @@ def test_size_picker_puts_the_design_on_another_size(tmp_path):
         bare.set_size("36")
 
 
+def test_a_reopened_design_offers_its_patterns_sizes(tmp_path):
+    """A design started in the studio from a graded pattern names the pattern relative to the
+    design file; reopened (the pattern in another folder), it offers the pattern's sizes, and
+    saved without changes it is byte-identical and passes ``stitchswitch check``. A design
+    whose pieces name the pattern by file name (as ``import`` writes) finds it beside itself; a
+    missing pattern gives a note and no size picker."""
+    import shutil
+    from pathlib import Path
+
+    from click.testing import CliRunner
+
+    from stitchswitch.cli.main import cli
+    from stitchswitch.cli.studio import _source
+    from stitchswitch.layout.garment.piece_select import select_pieces
+    from stitchswitch.studio.persist import source_pattern
+
+    (tmp_path / "patterns").mkdir()
+    (tmp_path / "designs").mkdir()
+    tank = tmp_path / "patterns" / "tank.dxf"
+    shutil.copy(Path(__file__).parent / "data/external/dxf/WM_LOOSE_SHAPE_TANK_AAMA.DXF", tank)
+    out = tmp_path / "designs" / "tank.json"
+    document, design, pattern = _source(str(tank), None, str(out), "30")
+    assert {p.source for p in design.pieces} == {os.path.join("..", "patterns", "tank.dxf")}
+    session = Session(document, design, default_map(), pattern=pattern)
+    session.add(tuple(design.pieces[0].outline_mm.mean(axis=0)))
+    session.save()
+    saved = out.read_bytes()
+    document, design, pattern = _source(str(out), None, None)        # reopened
+    assert pattern is not None
+    reopened = Session(document, design, default_map(), pattern=pattern)
+    assert len(reopened.sizes) == 14 and reopened.size == "30"
+    reopened.save()                                                  # no change: same bytes
+    assert out.read_bytes() == saved
+    result = CliRunner().invoke(cli, ["check", str(out)])
+    assert result.exit_code in (0, 1) and "Error:" not in result.output, result.output
+    reopened.set_size("36")
+    assert reopened.size == "36" and reopened.state.design.pieces[0].source == design.pieces[0].source
+    # the file name only, as `stitchswitch import` records it: looked up beside the design
+    beside = Design(1, select_pieces(pattern, "26"), (), MaterialRef("default"), MachineSpec())
+    assert {p.source for p in beside.pieces} == {"tank.dxf"}
+    found, note = source_pattern(beside, tmp_path / "patterns" / "beside.json")
+    assert found is not None and note == ""
+    found, note = source_pattern(beside, tmp_path / "designs" / "elsewhere.json")
+    assert found is None and "'tank.dxf'" in note and "no size picker" in note
+    rect = Design(1, (rectangle_piece(400.0, 300.0),), (), MaterialRef("default"), MachineSpec())
+    assert source_pattern(rect, out) == (None, "")
+
+
 def test_deferred_autosave(design_file):
     doc, design = Document.open(design_file)
     session = Session(doc, design, default_map())
