@@ -290,6 +290,43 @@ def test_canvas_zoom_pan_rulers_and_drag_guides(design_file):
     assert 'data-guide="seam"' in svg
 
 
+def test_dragged_patches_follow_the_pointer_with_their_edge_rule(tmp_path):
+    """While dragged, the canvas draws the patches where the pointer is, on the piece under
+    the new centre with that piece's edge rule; the design changes only on release."""
+    a = rectangle_piece(400.0, 300.0, "a")
+    b = a.__class__("b", a.size, a.source, a.outline_mm + np.array([500.0, 0.0]))
+    design = Design(1, (a, b), (), MaterialRef("default"), MachineSpec(), path=str(tmp_path / "d.json"))
+    session = Session(Document(design.path, design), design, default_map())
+    pid = session.add((200.0, 150.0))
+    before, edits = session.state.design, session.state.changed
+
+    def circle(svg):
+        m = re.search(rf'<circle data-patch="{pid}" cx="([-\d.]+)" cy="([-\d.]+)"', svg)
+        return float(m.group(1)), -float(m.group(2))
+
+    def centre_rule_x(svg):
+        ring = re.search(r'points="([^"]+)"[^>]*data-guide="centre"', svg).group(1).split()
+        return min(float(pt.split(",")[0]) for pt in ring)
+
+    session.drag_to(100.0, 0.0)                      # no patch held: nothing follows
+    assert circle(session.canvas_svg()) == (200.0, 150.0)
+    session.dragging = (pid,)
+    session.drag_to(30.0, -20.0)
+    svg = session.canvas_svg()
+    assert circle(svg) == pytest.approx((230.0, 130.0))
+    inset = 10.0 + 5.0 + 60.0 / (2 * design.material_object().eta)
+    assert centre_rule_x(svg) == pytest.approx(inset, abs=0.05)       # piece a's rule
+    session.drag_to(400.0, 0.0)                                       # over piece b
+    svg = session.canvas_svg()
+    assert circle(svg) == pytest.approx((600.0, 150.0))
+    assert centre_rule_x(svg) == pytest.approx(500.0 + inset, abs=0.05)   # piece b's rule
+    assert session.state.design is before and session.state.changed == edits   # not an edit
+    session.end_drag()
+    session.move(pid, (600.0, 150.0))                                 # the release
+    assert session.state.design.patch(pid).piece == "b"
+    assert circle(session.canvas_svg()) == (600.0, 150.0) and "data-guide" not in session.canvas_svg()
+
+
 def test_stitch_plan_preview_and_downloads(tmp_path, design_file):
     doc, design = Document.open(design_file)
     session = Session(doc, design, default_map())

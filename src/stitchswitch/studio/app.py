@@ -2,8 +2,9 @@
 ``Session`` and serves it.
 
 Design Mode: the canvas (SVG from ``canvas``; a press on a patch selects it, Shift+press adds
-it to the selection or takes it out, releasing elsewhere moves the selection, with the
-piece-edge rule drawn while the button is down; a click on an empty spot of a piece adds a
+it to the selection or takes it out, and dragging it moves the selection: the patches follow
+the pointer with their piece-edge rule (throttled moves, ``DRAG_THROTTLE_MS``) and the design
+changes on release; a click on an empty spot of a piece adds a
 patch, a drag from an empty spot pans, the wheel and the toolbar's - / Fit / + zoom; Delete
 removes the selection), the inspector (diameter and fill sliders, state, the live readout,
 the composite core and the conductive triangles), the 3D view (WebGL in the browser, the
@@ -32,6 +33,13 @@ POINTER = ("[$event.clientX - $event.currentTarget.getBoundingClientRect().left,
            "$event.clientY - $event.currentTarget.getBoundingClientRect().top, "
            "$event.currentTarget.clientWidth, $event.currentTarget.clientHeight, $event.shiftKey]")
 WHEEL = POINTER[:-len(", $event.shiftKey]")] + ", $event.deltaY]"
+#: while the button is down, the pointer's latest position goes to the server at most this
+#: often (ms; the last one always goes): the dragged patches follow it on the canvas
+DRAG_THROTTLE_MS = 40
+DRAG = (f"if ($event.buttons === 1) {{ window.studioDragAt = {POINTER}; "
+        "if (!window.studioDragTimer) window.studioDragTimer = window.setTimeout(() => { "
+        "window.studioDragTimer = null; trigger('studio_drag', window.studioDragAt) }, "
+        f"{DRAG_THROTTLE_MS}) }}")
 #: zoom factor per wheel step or button press
 ZOOM_STEP = 1.25
 #: the 3D scene is built this long after the panel: a flush only queues the panel's message,
@@ -177,7 +185,7 @@ def build_app(session, server=None):
         pt = canvas.to_mm(session.view(), px, py, w, h)
         pid, start = drag["id"], drag["start"]
         drag["id"] = drag["start"] = None
-        session.dragging = ()
+        session.end_drag()
         if start is None:
             return
         dx, dy = pt[0] - start[0], pt[1] - start[1]
@@ -195,6 +203,18 @@ def build_app(session, server=None):
             session.apply_candidate(k, pt)
         elif pid is None and not shift:
             session.add(pt)
+
+    @ctrl.trigger("studio_drag")
+    def on_drag(px, py, w, h, shift=False):
+        """A move with the button down after a press on a selected patch: the canvas draws the
+        dragged patches and their edge rule where the pointer is (the design changes on release)."""
+        if drag["start"] is None or not session.dragging:
+            return
+        pt = canvas.to_mm(session.view(), px, py, w, h)
+        session.drag_to(pt[0] - drag["start"][0], pt[1] - drag["start"][1])
+        state.canvas_svg = session.canvas_svg()
+        state.drag_stamp += 1
+        state.flush()
 
     @guarded
     def on_wheel(px, py, w, h, delta):
@@ -316,6 +336,7 @@ def build_app(session, server=None):
                   "selection": [], "composite_on": False, "core_d": 20.0, "core_fill": 0.9,
                   "conductive": "", "sizes": session.sizes, "size": session.size,
                   "plan_k": 0, "plan_svg": "", "plan_counts": {}, "placing": None, "scene_stamp": 0,
+                  "drag_stamp": 0,
                   "timings": {}})
 
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
@@ -340,6 +361,7 @@ def build_app(session, server=None):
             html.Span("{{ edits }}", id="edits", style="display:none")
             html.Span("{{ scene_stamp }}", id="scene-stamp", style="display:none")
             html.Span("{{ readout_stamp }}", id="readout-stamp", style="display:none")
+            html.Span("{{ drag_stamp }}", id="drag-stamp", style="display:none")
             html.Span("{{ JSON.stringify(timings) }}", id="timings", style="display:none")
         with layout.drawer as drawer:
             drawer.width = 380
@@ -426,6 +448,7 @@ def build_app(session, server=None):
             with html.Div(style="display:flex; height:100%; width:100%"):
                 html.Div(v_html=("canvas_svg",), id="canvas", style="flex:1; min-width:0; user-select:none",
                          mousedown=(on_down, POINTER), mouseup=(on_up, POINTER), tabindex="0",
+                         mousemove=DRAG,
                          wheel=(on_wheel, WHEEL),
                          keydown=(on_key, "[$event.key]"))
                 with html.Div(style="flex:1; min-width:0", id="view3d"):
