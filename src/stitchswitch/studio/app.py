@@ -42,9 +42,13 @@ DRAG = (f"if ($event.buttons === 1) {{ window.studioDragAt = {POINTER}; "
         f"{DRAG_THROTTLE_MS}) }}")
 #: zoom factor per wheel step or button press
 ZOOM_STEP = 1.25
-#: the 3D scene is built this long after the panel: a flush only queues the panel's message,
-#: and the event loop must get to write it before the scene's serialization holds the loop
-SCENE_DELAY_S = 0.01
+#: the 3D scene is built once the page has drawn the panel (it says so in the next animation
+#: frame after the edit counter changed), at the latest this long after the panel: the scene's
+#: build and serialization would hold the server's event loop before the panel's message is
+#: written, and the browser's WebGL render of the scene would hold the frame that shows it
+SCENE_DELAY_S = 0.15
+#: the page's acknowledgement that it has drawn the panel of an edit
+PANEL_SHOWN = "window.requestAnimationFrame(() => trigger('studio_panel_shown'))"
 #: the 3D view's name on the page (its full scene state is the state key ``scene_`` + it)
 VIEW_REF = "studio_view"
 READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_b_mm"),
@@ -67,7 +71,7 @@ def build_app(session, server=None):
     """The trame server with the studio page for ``session``."""
     from trame.app import get_server
     from trame.ui.vuetify3 import SinglePageWithDrawerLayout
-    from trame.widgets import html
+    from trame.widgets import client, html
     from trame.widgets import vtk as vtk_widgets
     from trame.widgets import vuetify3 as v3
 
@@ -150,6 +154,13 @@ def build_app(session, server=None):
             return
         if pending["scene"] is None:
             pending["scene"] = asyncio.get_event_loop().call_later(SCENE_DELAY_S, push_scene)
+
+    @ctrl.trigger("studio_panel_shown")
+    def panel_shown():
+        """The page has drawn the panel of the latest edit: the 3D view's turn."""
+        if pending["scene"] is not None:
+            pending["scene"].cancel()
+            push_scene()
 
     def push() -> None:
         push_panel()
@@ -359,6 +370,7 @@ def build_app(session, server=None):
             html.Span("{{ dirty ? 'unsaved changes' : 'saved' }}", classes="text-caption mx-2",
                       id="dirty")
             html.Span("{{ edits }}", id="edits", style="display:none")
+            client.ClientStateChange(value="edits", change=PANEL_SHOWN)
             html.Span("{{ scene_stamp }}", id="scene-stamp", style="display:none")
             html.Span("{{ readout_stamp }}", id="readout-stamp", style="display:none")
             html.Span("{{ drag_stamp }}", id="drag-stamp", style="display:none")
