@@ -1,5 +1,5 @@
 """Benchmark: the studio in headless Chromium on the 40-patch benchmark design of
-bench_preview.py (targets: slider move -> readout and 3D view updated, p95 <= 100 ms; add or
+bench_preview.py (targets: slider move -> readout and 3D view drawn, p95 <= 100 ms; add or
 move a patch -> check panel updated, p95 <= 150 ms; first load to an interactive page <= 3 s).
 
 Measured from the browser (Debian's chromium driven by Playwright, tests/studio_driver.py):
@@ -20,7 +20,14 @@ Measured from the browser (Debian's chromium driven by Playwright, tests/studio_
   counter the server sends with it), alternating back and forth; ``move_3d``: until the 3D
   view has the moved patch.
 
-The 3D view counts as updated when its ``afterSceneLoaded`` event (vtk.js has synchronized the
+* ``slider_drawn`` (the target's step): the same step until the frame with the new WebGL
+  image has been produced (one animation frame after ``slider``'s end; the render itself
+  happens after vtk.js's scene-loaded event); ``kB received`` and ``renders``: the websocket
+  bytes the page received (DevTools) and its WebGL renders (clears of the canvas) per step.
+
+Each step starts after ``SETTLE_S`` (the previous frame is done and the view's deferred full
+state, ``studio.view_channel``, has gone out). The 3D view counts as loaded when its
+``afterSceneLoaded`` event (vtk.js has synchronized the
 scene and fetched the new arrays) has fired for the edit. The server's share: ``check``
 (incremental, ``studio.live_check.LiveCheck``), ``scene`` (``preview3d.scene.SceneBuilder``:
 only the changed parts are rebuilt), ``sync`` (the pyvista actors of the changed parts),
