@@ -215,7 +215,8 @@ def measure(runs: int) -> dict:
             **{k + " (move)": v for k, v in move_phases.items()}}
 
 
-#: counts, not seconds: printed as they are
+#: counts and kB, not seconds: printed as they are (their "median_s" and "p95_s" in --json
+#: are in the row's "unit")
 COUNTS = ("  kB received (slider)", "  renders (slider)")
 
 
@@ -225,7 +226,9 @@ def summary(samples: dict) -> list[dict]:
         xs = np.asarray(xs)
         target = TARGETS.get(name)
         stat = float(np.percentile(xs, 95)) if len(xs) > 1 else float(xs[0])
-        rows.append({"step": name, "runs": int(xs.size), "median_s": float(np.median(xs)),
+        rows.append({"step": name, "unit": "kB" if "kB" in name else ("count" if name in COUNTS
+                                                                      else "s"),
+                     "runs": int(xs.size), "median_s": float(np.median(xs)),
                      "p95_s": stat, "target_s": target,
                      "meets": None if target is None else bool(stat <= target)})
     return rows
