@@ -1,5 +1,5 @@
 """Benchmark: the studio in headless Chromium on the 40-patch benchmark design of
-bench_preview.py (targets: slider move -> readout and 3D view updated, p95 <= 100 ms; add or
+bench_preview.py (targets: slider move -> readout and 3D view drawn, p95 <= 100 ms; add or
 move a patch -> check panel updated, p95 <= 150 ms; first load to an interactive page <= 3 s).
 
 Measured from the browser (Debian's chromium driven by Playwright, tests/studio_driver.py):
@@ -20,7 +20,14 @@ Measured from the browser (Debian's chromium driven by Playwright, tests/studio_
   counter the server sends with it), alternating back and forth; ``move_3d``: until the 3D
   view has the moved patch.
 
-The 3D view counts as updated when its ``afterSceneLoaded`` event (vtk.js has synchronized the
+* ``slider_drawn`` (the target's step): the same step until the frame with the new WebGL
+  image has been produced (one animation frame after ``slider``'s end; the render itself
+  happens after vtk.js's scene-loaded event); ``kB received`` and ``renders``: the websocket
+  bytes the page received (DevTools) and its WebGL renders (clears of the canvas) per step.
+
+Each step starts after ``SETTLE_S`` (the previous frame is done and the view's deferred full
+state, ``studio.view_channel``, has gone out). The 3D view counts as loaded when its
+``afterSceneLoaded`` event (vtk.js has synchronized the
 scene and fetched the new arrays) has fired for the edit. The server's share: ``check``
 (incremental, ``studio.live_check.LiveCheck``), ``scene`` (``preview3d.scene.SceneBuilder``:
 only the changed parts are rebuilt), ``sync`` (the pyvista actors of the changed parts),
@@ -50,7 +57,21 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "src"))
 from bench_preview import design_40  # noqa: E402
 from studio_driver import browser, studio_server, to_px  # noqa: E402
 
-TARGETS = {"slider": 0.100, "move": 0.150, "first_load": 3.0}
+#: the pause before each step, so that the view's deferred full state (``view_channel``) and
+#: the previous step's frame are done and do not fall into the step measured
+SETTLE_S = 1.3
+TARGETS = {"slider_drawn": 0.100, "move": 0.150, "first_load": 3.0}
+#: counts the page's WebGL renders (one clear of the canvas per render)
+COUNT_RENDERS = """(() => {
+  for (const C of [WebGLRenderingContext.prototype, WebGL2RenderingContext.prototype]) {
+    const clear = C.clear;
+    C.clear = function (...args) { window.studioRenders = (window.studioRenders || 0) + 1;
+                                   return clear.apply(this, args); };
+  }
+})();"""
+#: resolves after the next frame has been produced (a frame started after this call, then
+#: the one after it: the WebGL drawing done before the call is on the screen)
+NEXT_FRAME = "new Promise(r => requestAnimationFrame(() => requestAnimationFrame(() => r())))"
 
 
 def _stamp(page, sel: str) -> int:
@@ -60,6 +81,10 @@ def _stamp(page, sel: str) -> int:
 def _wait_stamp(page, sel: str, above: int) -> None:
     page.wait_for_function(f"Number(document.querySelector('{sel}').innerText) > {above}",
                            polling="raf", timeout=30000)
+
+
+def _renders(page) -> int:
+    return int(page.evaluate("window.studioRenders || 0"))
 
 
 def _loads(page) -> int:
@@ -74,6 +99,24 @@ def _wait_scene(page, above: int, loads: int) -> None:
         f"Number(document.querySelector('#scene-stamp').innerText) > {above} && "
         f"(window.studioSceneLoads || 0) > {loads} && !window.studioSceneBusy",
         polling="raf", timeout=30000)
+
+
+class Received:
+    """The websocket bytes the page receives (DevTools ``Network.webSocketFrameReceived``; a
+    binary frame's payload arrives base64-encoded, counted as its decoded size)."""
+
+    def __init__(self, page):
+        self.cdp = page.context.new_cdp_session(page)
+        self.cdp.send("Network.enable")
+        self.bytes = 0
+        self.frames = 0
+        self.cdp.on("Network.webSocketFrameReceived", self._on)
+
+    def _on(self, event) -> None:
+        r = event["response"]
+        n = len(r["payloadData"])
+        self.bytes += n * 3 // 4 if r.get("opcode") == 2 else n
+        self.frames += 1
 
 
 class BrowserTime:
@@ -104,6 +147,7 @@ def measure(runs: int) -> dict:
             server_start = time.perf_counter() - t0
             with browser() as ctx:
                 page = ctx.new_page()
+                page.add_init_script(COUNT_RENDERS)
                 t1 = time.perf_counter()
                 page.goto(url)
                 page.wait_for_function("document.querySelectorAll('#canvas circle').length == 40",
@@ -116,11 +160,13 @@ def measure(runs: int) -> dict:
                 page.wait_for_selector("#slider-fill .v-slider-thumb")
                 thumb = page.locator("#slider-fill .v-slider-thumb")
                 thumb.focus()
-                task = BrowserTime(page)
+                task, received = BrowserTime(page), Received(page)
                 slider, readout, check, server, slider_task, move_task = [], [], [], [], [], []
+                drawn, kbytes, renders = [], [], []
                 for k in range(runs):
+                    time.sleep(SETTLE_S)
                     before, loads = _stamp(page, "#edits"), _loads(page)
-                    b0 = task()
+                    b0, r0, n0 = task(), received.bytes, _renders(page)
                     t = time.perf_counter()
                     page.keyboard.press("ArrowLeft" if k % 2 else "ArrowRight")
                     _wait_stamp(page, "#readout-stamp", before)
@@ -129,12 +175,17 @@ def measure(runs: int) -> dict:
                     check.append(time.perf_counter() - t)
                     _wait_scene(page, before, loads)
                     slider.append(time.perf_counter() - t)
+                    page.evaluate(NEXT_FRAME)
+                    drawn.append(time.perf_counter() - t)
                     slider_task.append(task() - b0)
+                    kbytes.append((received.bytes - r0) / 1000.0)
+                    renders.append(_renders(page) - n0)
                     server.append(json.loads(page.locator("#timings").inner_text()))
                 move, move_3d = [], []
                 x, y = p.centre_mm
                 for k in range(runs):
                     dx = 4.0 if k % 2 == 0 else -4.0
+                    time.sleep(SETTLE_S)
                     before, loads = _stamp(page, "#edits"), _loads(page)
                     page.mouse.move(*to_px(page, view, x, y))
                     page.mouse.down()
@@ -145,6 +196,7 @@ def measure(runs: int) -> dict:
                     _wait_stamp(page, "#edits", before)
                     move.append(time.perf_counter() - t)
                     _wait_scene(page, before, loads)
+                    page.evaluate(NEXT_FRAME)
                     move_3d.append(time.perf_counter() - t)
                     move_task.append(task() - b0)
                     server.append(json.loads(page.locator("#timings").inner_text()))
@@ -156,9 +208,16 @@ def measure(runs: int) -> dict:
                    for k in move_rows[0] if k.endswith("_s")}
     return {"server_start": [server_start], "first_load": [first_load],
             "first_scene": [first_scene], "slider_readout": readout,
-            "slider_check": check, "slider": slider, "  browser task (slider)": slider_task,
+            "slider_check": check, "slider": slider, "slider_drawn": drawn,
+            "  browser task (slider)": slider_task, "  kB received (slider)": kbytes,
+            "  renders (slider)": renders,
             **phases, "move": move, "move_3d": move_3d, "  browser task (move)": move_task,
             **{k + " (move)": v for k, v in move_phases.items()}}
+
+
+#: counts and kB, not seconds: printed as they are (their "median_s" and "p95_s" in --json
+#: are in the row's "unit")
+COUNTS = ("  kB received (slider)", "  renders (slider)")
 
 
 def summary(samples: dict) -> list[dict]:
@@ -167,7 +226,9 @@ def summary(samples: dict) -> list[dict]:
         xs = np.asarray(xs)
         target = TARGETS.get(name)
         stat = float(np.percentile(xs, 95)) if len(xs) > 1 else float(xs[0])
-        rows.append({"step": name, "runs": int(xs.size), "median_s": float(np.median(xs)),
+        rows.append({"step": name, "unit": "kB" if "kB" in name else ("count" if name in COUNTS
+                                                                      else "s"),
+                     "runs": int(xs.size), "median_s": float(np.median(xs)),
                      "p95_s": stat, "target_s": target,
                      "meets": None if target is None else bool(stat <= target)})
     return rows
@@ -186,7 +247,8 @@ def main(argv=None) -> int:
     print(f"{'step':<30}{'runs':>5}{'median ms':>11}{'p95 ms':>9}{'target ms':>11}  meets")
     for r in rows:
         tgt = "" if r["target_s"] is None else f"{1000 * r['target_s']:.0f}"
-        print(f"{r['step']:<30}{r['runs']:>5}{1000 * r['median_s']:>11.0f}{1000 * r['p95_s']:>9.0f}"
+        scale = 1 if r["step"] in COUNTS else 1000
+        print(f"{r['step']:<30}{r['runs']:>5}{scale * r['median_s']:>11.0f}{scale * r['p95_s']:>9.0f}"
               f"{tgt:>11}  {'' if r['meets'] is None else ('yes' if r['meets'] else 'NO')}")
     print(f"load average (1 min): {load:.2f}")
     return 0

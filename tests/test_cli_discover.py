@@ -89,3 +89,17 @@ def test_refuses_a_foreign_report_directory_before_any_work(case, tmp_path):
                                  "--report", str(out)])
     assert r.exit_code == 2 and "holds 'notes.txt'" in r.output
     assert (out / "notes.txt").read_text() == "mine" and len(list(out.iterdir())) == 1
+
+
+@pytest.mark.slow
+def test_demo_names_its_hidden_effect(tmp_path):
+    """The built-in demo hides a detectable effect and the workflow names exactly it."""
+    from stitchswitch.cli.validation.discover import DEMO_SOURCE
+
+    out = tmp_path / "demo.json"
+    r = CliRunner().invoke(cli, ["discover", "--demo", "--workers", "1", "--json", str(out)])
+    assert r.exit_code == 0, r.output
+    doc = json.loads(out.read_text())
+    assert doc["verdict"] == "named"
+    assert doc["missing_effect"] == DEMO_SOURCE
+    assert doc["after"]["r_a"]["mae_mm"] < doc["before"]["r_a"]["mae_mm"]

@@ -91,12 +91,25 @@ def test_studio_in_chromium(tmp_path):
             assert page.locator("#canvas [data-ruler-x]").count() > 2
             page.locator("#fit-view").click()
             page.wait_for_function(f"document.querySelector('#canvas svg').getAttribute('viewBox') == '{box0}'")
-            # holding the patch draws the piece-edge rule; releasing in place changes nothing
+            # holding the patch draws the piece-edge rule, and the patch follows the pointer
+            # while the button is down; releasing where it was pressed changes nothing
+            edits = int(page.locator("#edits").inner_text())
             page.mouse.move(*to_px(page, view, 100.0, 150.0))
             page.mouse.down()
             page.wait_for_selector("#canvas [data-guide=centre]")
+            page.mouse.move(*to_px(page, view, 130.0, 140.0), steps=6)
+            page.wait_for_function("Number(document.querySelector('#canvas circle[data-patch=p1]')"
+                                   ".getAttribute('cx')) > 125")
+            assert page.locator("#canvas [data-guide=centre][data-guide-patch=p1]").count() >= 1
+            assert int(page.locator("#edits").inner_text()) == edits          # not an edit yet
+            page.mouse.move(*to_px(page, view, 100.0, 150.0), steps=6)
+            page.wait_for_function("Math.abs(Number(document.querySelector('#canvas circle"
+                                   "[data-patch=p1]').getAttribute('cx')) - 100) < 1.5")
+            page.wait_for_timeout(200)
             page.mouse.up()
             page.wait_for_function("!document.querySelector('#canvas [data-guide]')")
+            cx = float(page.locator("#canvas circle[data-patch=p1]").get_attribute("cx"))
+            assert cx == pytest.approx(100.0, abs=1.5)
             # Shift+click adds the pocket to the selection, Shift+click again takes it out
             pocket = design.patches[0]
             page.keyboard.down("Shift")

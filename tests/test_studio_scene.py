@@ -12,7 +12,7 @@ from stitchswitch.preview3d import colours
 from stitchswitch.preview3d.scene import SceneBuilder, build_scene
 from stitchswitch.preview3d.spec import spec_from_design
 from stitchswitch.studio.live_check import LiveCheck
-from stitchswitch.studio.scene3d import PlotterSync, Scene3D, group_of
+from stitchswitch.studio.scene3d import PlotterSync, Scene3D, group_of, view_scale
 from stitchswitch.studio.state import StudioState
 
 
@@ -173,3 +173,23 @@ def test_view_actors_follow_the_scene_and_show_the_check():
         assert "lines:patch:error" not in sync.actors
     finally:
         pl.close()
+
+
+@pytest.mark.parametrize("heights", [[3.0, 10.0], [-4.0, 8.0], [-6.0, -2.0], [5.0]])
+def test_view_colour_range_is_the_heights_range_with_the_canvas_colours(heights):
+    """The 3D view's colour range is the heights' own (with the flat fabric's 0), and each
+    height gets the colour of the canvas's symmetric map (coolwarm over -H..H)."""
+    pv = pytest.importorskip("pyvista")
+    from matplotlib import colormaps
+
+    from stitchswitch.studio.scene3d import _lookup_table
+
+    (a, b), (lo, hi) = view_scale(heights)
+    assert (lo, hi) == (min(0.0, *heights), max(0.0, *heights))
+    lut = _lookup_table(pv, (a, b))
+    lut.scalar_range = (lo, hi)
+    big = max(abs(h) for h in heights)
+    for h in [*heights, 0.0]:
+        rgb = [0.0, 0.0, 0.0]
+        lut.GetColor(h, rgb)
+        assert np.allclose(rgb, colormaps[colours.HEIGHT_CMAP](0.5 + 0.5 * h / big)[:3], atol=0.02)

@@ -17,8 +17,7 @@ from stitchswitch.reduced.design_space.cache import default_map
 from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import fabrication, inverse_panel, live_check
 from stitchswitch.studio.persist import Document, sidecar_path
-from stitchswitch.studio.profile_plot import profile_svg
-from stitchswitch.studio.readout import heights_mm, readout
+from stitchswitch.studio.readout import heights_mm, profile_svg, readout
 from stitchswitch.studio.session import Session
 from stitchswitch.studio.state import StudioState
 
@@ -291,6 +290,43 @@ def test_canvas_zoom_pan_rulers_and_drag_guides(design_file):
     assert 'data-guide="seam"' in svg
 
 
+def test_dragged_patches_follow_the_pointer_with_their_edge_rule(tmp_path):
+    """While dragged, the canvas draws the patches where the pointer is, on the piece under
+    the new centre with that piece's edge rule; the design changes only on release."""
+    a = rectangle_piece(400.0, 300.0, "a")
+    b = a.__class__("b", a.size, a.source, a.outline_mm + np.array([500.0, 0.0]))
+    design = Design(1, (a, b), (), MaterialRef("default"), MachineSpec(), path=str(tmp_path / "d.json"))
+    session = Session(Document(design.path, design), design, default_map())
+    pid = session.add((200.0, 150.0))
+    before, edits = session.state.design, session.state.changed
+
+    def circle(svg):
+        m = re.search(rf'<circle data-patch="{pid}" cx="([-\d.]+)" cy="([-\d.]+)"', svg)
+        return float(m.group(1)), -float(m.group(2))
+
+    def centre_rule_x(svg):
+        ring = re.search(r'points="([^"]+)"[^>]*data-guide="centre"', svg).group(1).split()
+        return min(float(pt.split(",")[0]) for pt in ring)
+
+    session.drag_to(100.0, 0.0)                      # no patch held: nothing follows
+    assert circle(session.canvas_svg()) == (200.0, 150.0)
+    session.dragging = (pid,)
+    session.drag_to(30.0, -20.0)
+    svg = session.canvas_svg()
+    assert circle(svg) == pytest.approx((230.0, 130.0))
+    inset = 10.0 + 5.0 + 60.0 / (2 * design.material_object().eta)
+    assert centre_rule_x(svg) == pytest.approx(inset, abs=0.05)       # piece a's rule
+    session.drag_to(400.0, 0.0)                                       # over piece b
+    svg = session.canvas_svg()
+    assert circle(svg) == pytest.approx((600.0, 150.0))
+    assert centre_rule_x(svg) == pytest.approx(500.0 + inset, abs=0.05)   # piece b's rule
+    assert session.state.design is before and session.state.changed == edits   # not an edit
+    session.end_drag()
+    session.move(pid, (600.0, 150.0))                                 # the release
+    assert session.state.design.patch(pid).piece == "b"
+    assert circle(session.canvas_svg()) == (600.0, 150.0) and "data-guide" not in session.canvas_svg()
+
+
 def test_stitch_plan_preview_and_downloads(tmp_path, design_file):
     doc, design = Document.open(design_file)
     session = Session(doc, design, default_map())
@@ -348,6 +384,54 @@ def test_size_picker_puts_the_design_on_another_size(tmp_path):
     assert bare.sizes == []
     with pytest.raises(InvalidInputError, match="graded pattern"):
         bare.set_size("36")
+
+
+def test_a_reopened_design_offers_its_patterns_sizes(tmp_path):
+    """A design started in the studio from a graded pattern names the pattern relative to the
+    design file; reopened (the pattern in another folder), it offers the pattern's sizes, and
+    saved without changes it is byte-identical and passes ``stitchswitch check``. A design
+    whose pieces name the pattern by file name (as ``import`` writes) finds it beside itself; a
+    missing pattern gives a note and no size picker."""
+    import shutil
+    from pathlib import Path
+
+    from click.testing import CliRunner
+
+    from stitchswitch.cli.main import cli
+    from stitchswitch.cli.studio import _source
+    from stitchswitch.layout.garment.piece_select import select_pieces
+    from stitchswitch.studio.persist import source_pattern
+
+    (tmp_path / "patterns").mkdir()
+    (tmp_path / "designs").mkdir()
+    tank = tmp_path / "patterns" / "tank.dxf"
+    shutil.copy(Path(__file__).parent / "data/external/dxf/WM_LOOSE_SHAPE_TANK_AAMA.DXF", tank)
+    out = tmp_path / "designs" / "tank.json"
+    document, design, pattern = _source(str(tank), None, str(out), "30")
+    assert {p.source for p in design.pieces} == {os.path.join("..", "patterns", "tank.dxf")}
+    session = Session(document, design, default_map(), pattern=pattern)
+    session.add(tuple(design.pieces[0].outline_mm.mean(axis=0)))
+    session.save()
+    saved = out.read_bytes()
+    document, design, pattern = _source(str(out), None, None)        # reopened
+    assert pattern is not None
+    reopened = Session(document, design, default_map(), pattern=pattern)
+    assert len(reopened.sizes) == 14 and reopened.size == "30"
+    reopened.save()                                                  # no change: same bytes
+    assert out.read_bytes() == saved
+    result = CliRunner().invoke(cli, ["check", str(out)])
+    assert result.exit_code in (0, 1) and "Error:" not in result.output, result.output
+    reopened.set_size("36")
+    assert reopened.size == "36" and reopened.state.design.pieces[0].source == design.pieces[0].source
+    # the file name only, as `stitchswitch import` records it: looked up beside the design
+    beside = Design(1, select_pieces(pattern, "26"), (), MaterialRef("default"), MachineSpec())
+    assert {p.source for p in beside.pieces} == {"tank.dxf"}
+    found, note = source_pattern(beside, tmp_path / "patterns" / "beside.json")
+    assert found is not None and note == ""
+    found, note = source_pattern(beside, tmp_path / "designs" / "elsewhere.json")
+    assert found is None and "'tank.dxf'" in note and "no size picker" in note
+    rect = Design(1, (rectangle_piece(400.0, 300.0),), (), MaterialRef("default"), MachineSpec())
+    assert source_pattern(rect, out) == (None, "")
 
 
 def test_deferred_autosave(design_file):

@@ -19,7 +19,7 @@ def _source(source, rectangle, output, size=None):
     from stitchswitch.cli.design.import_cmd import parse_rectangle
     from stitchswitch.layout.garment.design import VERSION, Design
     from stitchswitch.layout.garment.piece_select import rectangle_piece, select_pieces
-    from stitchswitch.studio.persist import Document
+    from stitchswitch.studio.persist import Document, source_pattern
 
     if (source is None) == (rectangle is None):
         raise InvalidInputError("give either a DESIGN.json or PATTERN.dxf, or --rectangle WxH (not both)")
@@ -28,7 +28,11 @@ def _source(source, rectangle, output, size=None):
             raise InvalidInputError(f"--output {output!r}: a design file is saved to itself ({source!r})")
         if size is not None:
             raise InvalidInputError("--size: only a pattern (PATTERN.dxf) has sizes")
-        return (*Document.open(source), None)
+        document, design = Document.open(source)
+        pattern, note = source_pattern(design, source)     # the sizes of the pattern it came from
+        if note:
+            log.warning(f"{source}: {note}")
+        return document, design, pattern
     if output is None:
         raise InvalidInputError("--output DESIGN.json is needed to save a design started from "
                                 + (f"the pattern {source!r}" if source else "--rectangle"))
@@ -44,7 +48,9 @@ def _source(source, rectangle, output, size=None):
 
         pattern = import_dxf(source)
         first = next(iter(dict.fromkeys(p.size for p in pattern)), None)
-        pieces = select_pieces(pattern, size if size is not None else first)
+        # the pieces name the pattern relative to the design file, where reopening looks for it
+        pieces = select_pieces(pattern, size if size is not None else first, source=os.path.relpath(
+            os.path.abspath(source), os.path.dirname(os.path.abspath(output))))
     design = Design(VERSION, pieces, (), path=output)
     return Document(output, design), design, pattern
 

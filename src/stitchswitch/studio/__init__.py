@@ -7,7 +7,8 @@ page (``app``, trame) only binds widgets to them.
 * ``state``: ``StudioState``, the design under edit, the selection (one patch or several), add /
   move / edit / remove patches, another size of the pattern, undo / redo.
 * ``readout``: ``readout(dmap, d, fill)``, the live keypoints, profile and force of a design
-  from the design-space map; ``heights_mm`` of every patch.
+  from the design-space map; ``heights_mm`` of every patch; ``profile_svg``, the selected
+  patch's profile for the inspector.
 * ``live_check``: ``run_check`` and the incremental ``LiveCheck``, the library constraint check,
   as panel rows.
 * ``inverse_panel``: ``candidates(target, dmap, state)`` and ``apply``.
@@ -15,11 +16,12 @@ page (``app``, trame) only binds widgets to them.
 * ``fabrication``: ``hoopings`` (grouping and order), ``hooping_plan`` (one hooping's stitches)
   and ``export`` (``fabricate``).
 * ``stitch_preview``: ``plan_svg``, a hooping's stitch plan as SVG, and its ``counts``.
-* ``profile_plot``: ``profile_svg``, the selected patch's profile for the inspector.
 * ``canvas``: the 2D canvas as SVG markup (rulers, the edge rule while dragging), zoom and pan,
   and the mapping of a click back to garment mm.
 * ``scene3d``: ``Scene3D``, the 3D view's scene (``preview3d.scene.SceneBuilder``, rebuilt
   incrementally), and ``PlotterSync``, its pyvista actors.
+* ``view_channel``: ``ViewChannel``, sending the view's changes to the page (one scene in
+  flight, the newest wins; the full scene state once edits pause).
 * ``session``: ``Session``, everything the page shows, recomputed after each action.
 * ``app``: the trame page and ``serve(session, port, host, open_browser)``.
 

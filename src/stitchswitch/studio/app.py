@@ -2,8 +2,9 @@
 ``Session`` and serves it.
 
 Design Mode: the canvas (SVG from ``canvas``; a press on a patch selects it, Shift+press adds
-it to the selection or takes it out, releasing elsewhere moves the selection, with the
-piece-edge rule drawn while the button is down; a click on an empty spot of a piece adds a
+it to the selection or takes it out, and dragging it moves the selection: the patches follow
+the pointer with their piece-edge rule (throttled moves, ``DRAG_THROTTLE_MS``) and the design
+changes on release; a click on an empty spot of a piece adds a
 patch, a drag from an empty spot pans, the wheel and the toolbar's - / Fit / + zoom; Delete
 removes the selection), the inspector (diameter and fill sliders, state, the live readout,
 the composite core and the conductive triangles), the 3D view (WebGL in the browser, the
@@ -22,8 +23,9 @@ from stitchswitch.errors import InvalidInputError, StitchSwitchError
 from stitchswitch.preview3d import colours
 from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import canvas, live_check
-from stitchswitch.studio.profile_plot import profile_svg
+from stitchswitch.studio.readout import profile_svg
 from stitchswitch.studio.scene3d import PlotterSync
+from stitchswitch.studio.view_channel import ViewChannel
 
 #: the pointer expression passed to the canvas handlers: position on the SVG and its size, px,
 #: then the Shift key
@@ -31,11 +33,24 @@ POINTER = ("[$event.clientX - $event.currentTarget.getBoundingClientRect().left,
            "$event.clientY - $event.currentTarget.getBoundingClientRect().top, "
            "$event.currentTarget.clientWidth, $event.currentTarget.clientHeight, $event.shiftKey]")
 WHEEL = POINTER[:-len(", $event.shiftKey]")] + ", $event.deltaY]"
+#: while the button is down, the pointer's latest position goes to the server at most this
+#: often (ms; the last one always goes): the dragged patches follow it on the canvas
+DRAG_THROTTLE_MS = 40
+DRAG = (f"if ($event.buttons === 1) {{ window.studioDragAt = {POINTER}; "
+        "if (!window.studioDragTimer) window.studioDragTimer = window.setTimeout(() => { "
+        "window.studioDragTimer = null; trigger('studio_drag', window.studioDragAt) }, "
+        f"{DRAG_THROTTLE_MS}) }}")
 #: zoom factor per wheel step or button press
 ZOOM_STEP = 1.25
-#: the 3D scene is built this long after the panel: a flush only queues the panel's message,
-#: and the event loop must get to write it before the scene's serialization holds the loop
-SCENE_DELAY_S = 0.05
+#: the 3D scene is built once the page has drawn the panel (it says so in the next animation
+#: frame after the edit counter changed), at the latest this long after the panel: the scene's
+#: build and serialization would hold the server's event loop before the panel's message is
+#: written, and the browser's WebGL render of the scene would hold the frame that shows it
+SCENE_DELAY_S = 0.15
+#: the page's acknowledgement that it has drawn the panel of an edit
+PANEL_SHOWN = "window.requestAnimationFrame(() => trigger('studio_panel_shown'))"
+#: the 3D view's name on the page (its full scene state is the state key ``scene_`` + it)
+VIEW_REF = "studio_view"
 READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_b_mm"),
                 ("z_b", "z_b_mm"))
 
@@ -56,7 +71,7 @@ def build_app(session, server=None):
     """The trame server with the studio page for ``session``."""
     from trame.app import get_server
     from trame.ui.vuetify3 import SinglePageWithDrawerLayout
-    from trame.widgets import html
+    from trame.widgets import client, html
     from trame.widgets import vtk as vtk_widgets
     from trame.widgets import vuetify3 as v3
 
@@ -68,6 +83,7 @@ def build_app(session, server=None):
     drag = {"id": None, "start": None}
     pending = {"check": None, "scene": None}
     camera = {"set": False}
+    sync_counts: dict = {}
     shown_last = [None, None]         # the design and check verdicts the 3D view was sent
 
     def push_readout() -> None:
@@ -104,24 +120,31 @@ def build_app(session, server=None):
         state.flush()
         session.write_autosave()
 
-    def push_scene() -> None:
-        pending["scene"] = None
+    def build_view() -> None:
+        """The scene and the view's actors, for ``ViewChannel.send``."""
         shown_last[:] = (session.state.design, colours.status_from_violations(session.violations))
         session.refresh_scene()
         t0, c0 = time.perf_counter(), time.process_time()
-        counts = view_sync.sync(session.scene3d, session.violations)
+        sync_counts.clear()
+        sync_counts.update(view_sync.sync(session.scene3d, session.violations))
         if not camera["set"]:
             pl.view_isometric()
             pl.reset_camera()
             camera["set"] = True
-        t1, c1 = time.perf_counter(), time.process_time()
-        ctrl.view_update()
-        sent = {"sync_s": t1 - t0, "sync_cpu_s": c1 - c0, "view_send_s": time.perf_counter() - t1,
-                "view_send_cpu_s": time.process_time() - c1}
-        # sent after the view's geometry, on the same websocket
-        state.timings = {k: round(1000 * v, 2) for k, v in (session.timings_s | sent).items()} | counts
+        session.timings_s["sync_s"] = time.perf_counter() - t0
+        session.timings_s["sync_cpu_s"] = time.process_time() - c0
+
+    def scene_sent(send_s: float, send_cpu_s: float) -> None:
+        """After the view's delta, on the same websocket: the timings and the scene stamp."""
+        sent = {"view_send_s": send_s, "view_send_cpu_s": send_cpu_s}
+        state.timings = ({k: round(1000 * v, 2) for k, v in (session.timings_s | sent).items()}
+                         | sync_counts)
         state.scene_stamp = session.state.changed
         state.flush()
+
+    def push_scene() -> None:
+        pending["scene"] = None
+        channel.send()
 
     def schedule_scene() -> None:
         """The 3D view after the panel has gone out, when the design or the check's verdicts
@@ -131,6 +154,13 @@ def build_app(session, server=None):
             return
         if pending["scene"] is None:
             pending["scene"] = asyncio.get_event_loop().call_later(SCENE_DELAY_S, push_scene)
+
+    @ctrl.trigger("studio_panel_shown")
+    def panel_shown():
+        """The page has drawn the panel of the latest edit: the 3D view's turn."""
+        if pending["scene"] is not None:
+            pending["scene"].cancel()
+            push_scene()
 
     def push() -> None:
         push_panel()
@@ -166,7 +196,7 @@ def build_app(session, server=None):
         pt = canvas.to_mm(session.view(), px, py, w, h)
         pid, start = drag["id"], drag["start"]
         drag["id"] = drag["start"] = None
-        session.dragging = ()
+        session.end_drag()
         if start is None:
             return
         dx, dy = pt[0] - start[0], pt[1] - start[1]
@@ -184,6 +214,18 @@ def build_app(session, server=None):
             session.apply_candidate(k, pt)
         elif pid is None and not shift:
             session.add(pt)
+
+    @ctrl.trigger("studio_drag")
+    def on_drag(px, py, w, h, shift=False):
+        """A move with the button down after a press on a selected patch: the canvas draws the
+        dragged patches and their edge rule where the pointer is (the design changes on release)."""
+        if drag["start"] is None or not session.dragging:
+            return
+        pt = canvas.to_mm(session.view(), px, py, w, h)
+        session.drag_to(pt[0] - drag["start"][0], pt[1] - drag["start"][1])
+        state.canvas_svg = session.canvas_svg()
+        state.drag_stamp += 1
+        state.flush()
 
     @guarded
     def on_wheel(px, py, w, h, delta):
@@ -244,6 +286,11 @@ def build_app(session, server=None):
         except (InvalidInputError, StitchSwitchError) as exc:
             state.message = f"Error: {exc}"
 
+    @ctrl.trigger("studio_scene_loaded")
+    def scene_loaded():
+        """The page has loaded the scene in flight (vtk.js's afterSceneLoaded)."""
+        channel.loaded()
+
     @ctrl.trigger("studio_file")
     def exported_file(name):
         """The bytes of an exported file, for the page's download links."""
@@ -299,7 +346,8 @@ def build_app(session, server=None):
                   "diameter": 60.0, "fill": 0.5, "patch_state": "up", "readout_stamp": 0,
                   "selection": [], "composite_on": False, "core_d": 20.0, "core_fill": 0.9,
                   "conductive": "", "sizes": session.sizes, "size": session.size,
-                  "plan_k": 0, "plan_svg": "", "plan_counts": {}, "placing": None,
+                  "plan_k": 0, "plan_svg": "", "plan_counts": {}, "placing": None, "scene_stamp": 0,
+                  "drag_stamp": 0,
                   "timings": {}})
 
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
@@ -322,8 +370,10 @@ def build_app(session, server=None):
             html.Span("{{ dirty ? 'unsaved changes' : 'saved' }}", classes="text-caption mx-2",
                       id="dirty")
             html.Span("{{ edits }}", id="edits", style="display:none")
+            client.ClientStateChange(value="edits", change=PANEL_SHOWN)
             html.Span("{{ scene_stamp }}", id="scene-stamp", style="display:none")
             html.Span("{{ readout_stamp }}", id="readout-stamp", style="display:none")
+            html.Span("{{ drag_stamp }}", id="drag-stamp", style="display:none")
             html.Span("{{ JSON.stringify(timings) }}", id="timings", style="display:none")
         with layout.drawer as drawer:
             drawer.width = 380
@@ -410,16 +460,18 @@ def build_app(session, server=None):
             with html.Div(style="display:flex; height:100%; width:100%"):
                 html.Div(v_html=("canvas_svg",), id="canvas", style="flex:1; min-width:0; user-select:none",
                          mousedown=(on_down, POINTER), mouseup=(on_up, POINTER), tabindex="0",
+                         mousemove=DRAG,
                          wheel=(on_wheel, WHEEL),
                          keydown=(on_key, "[$event.key]"))
                 with html.Div(style="flex:1; min-width:0", id="view3d"):
                     # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js has
                     # the new geometry, its arrays fetched), counted for the benchmark and tests
                     view = vtk_widgets.VtkLocalView(
-                        pl.ren_win, before_scene_loaded="window.studioSceneBusy = true",
+                        pl.ren_win, ref=VIEW_REF, before_scene_loaded="window.studioSceneBusy = true",
                         after_scene_loaded="window.studioSceneBusy = false; "
-                                           "window.studioSceneLoads = (window.studioSceneLoads || 0) + 1")
-                    ctrl.view_update = view.update
+                                           "window.studioSceneLoads = (window.studioSceneLoads || 0) + 1;"
+                                           " trigger('studio_scene_loaded')")
+                    channel = ViewChannel(server, view, pl.ren_win, VIEW_REF, build_view, scene_sent)
                     ctrl.view_reset_camera = view.reset_camera
     push_panel()
     push_scene()

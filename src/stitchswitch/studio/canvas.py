@@ -84,36 +84,46 @@ def _ruler_step(width_mm: float) -> float:
     return next((s for s in (10.0, 50.0, 100.0, 500.0) if width_mm / s <= 12), 1000.0)
 
 
+def _ruler_axis(axis: str, lo: float, length: float, edge: float, step: float, band: float,
+                size: float) -> list[str]:
+    """The ticks (every step / 5) and labels (every step) of one ruler: ``axis`` "x" runs
+    along the top edge (SVG y = ``edge``), "y" down the left edge (SVG x = ``edge``); ``lo``
+    and ``length``: the view's extent along the axis in SVG units. Labels are garment mm (the
+    SVG's y is the garment's negated)."""
+    minor = step / 5
+    sign = 1.0 if axis == "x" else -1.0
+
+    def at(along: float, across: float) -> tuple[str, str]:
+        return (_f(along), _f(across)) if axis == "x" else (_f(across), _f(along))
+
+    out = []
+    for t in np.arange(np.ceil(lo / minor), np.floor((lo + length) / minor) + 1) * minor:
+        major = abs(t / step - round(t / step)) < 1e-9
+        tick = band * (0.6 if major else 0.3)
+        (x1, y1), (x2, y2) = at(t, edge + band - tick), at(t, edge + band)
+        out.append(f'<line x1="{x1}" y1="{y1}" x2="{x2}" y2="{y2}" stroke="#666" '
+                   f'stroke-width="{_f(band / 20)}" pointer-events="none"/>')
+        if major:
+            tx, ty = (at(t + band * 0.1, edge + size) if axis == "x"
+                      else at(t - band * 0.1, edge + band * 0.05))
+            value = sign * t + 0.0
+            out.append(f'<text x="{tx}" y="{ty}" font-size="{_f(size if axis == "x" else size * 0.8)}" '
+                       f'fill="#444" pointer-events="none" data-ruler-{axis}="{value:g}">{value:g}</text>')
+    return out
+
+
 def rulers(v: View) -> list[str]:
     """mm rulers along the top and left edges of the view (ticks every step / 5, labels every
     step), drawn in garment mm so that they follow zoom and pan; x and y as in the design file."""
     step = _ruler_step(max(v.width, v.height))
-    minor = step / 5
     band = v.height * 0.035
     size = band * 0.6
     out = [f'<rect x="{_f(v.x0)}" y="{_f(v.y0)}" width="{_f(v.width)}" height="{_f(band)}" '
            'fill="#f0f0f0" pointer-events="none" data-ruler="x"/>',
            f'<rect x="{_f(v.x0)}" y="{_f(v.y0)}" width="{_f(band)}" height="{_f(v.height)}" '
            'fill="#f0f0f0" pointer-events="none" data-ruler="y"/>']
-    for x in np.arange(np.ceil(v.x0 / minor), np.floor((v.x0 + v.width) / minor) + 1) * minor:
-        major = abs(x / step - round(x / step)) < 1e-9
-        tick = band * (0.6 if major else 0.3)
-        out.append(f'<line x1="{_f(x)}" y1="{_f(v.y0 + band - tick)}" x2="{_f(x)}" '
-                   f'y2="{_f(v.y0 + band)}" stroke="#666" stroke-width="{_f(band / 20)}" '
-                   'pointer-events="none"/>')
-        if major:
-            out.append(f'<text x="{_f(x + band * 0.1)}" y="{_f(v.y0 + size)}" font-size="{_f(size)}" '
-                       f'fill="#444" pointer-events="none" data-ruler-x="{x:g}">{x:g}</text>')
-    for y in np.arange(np.ceil(v.y0 / minor), np.floor((v.y0 + v.height) / minor) + 1) * minor:
-        major = abs(y / step - round(y / step)) < 1e-9
-        tick = band * (0.6 if major else 0.3)
-        out.append(f'<line x1="{_f(v.x0 + band - tick)}" y1="{_f(y)}" x2="{_f(v.x0 + band)}" '
-                   f'y2="{_f(y)}" stroke="#666" stroke-width="{_f(band / 20)}" '
-                   'pointer-events="none"/>')
-        if major:
-            out.append(f'<text x="{_f(v.x0 + band * 0.05)}" y="{_f(y - band * 0.1)}" '
-                       f'font-size="{_f(size * 0.8)}" fill="#444" pointer-events="none" '
-                       f'data-ruler-y="{-y:g}">{-y + 0.0:g}</text>')
+    out += _ruler_axis("x", v.x0, v.width, v.y0, step, band, size)
+    out += _ruler_axis("y", v.y0, v.height, v.x0, step, band, size)
     out.append(f'<text x="{_f(v.x0 + band * 0.1)}" y="{_f(v.y0 + size)}" '
                f'font-size="{_f(size * 0.8)}" fill="#444" pointer-events="none">mm</text>')
     return out

@@ -5,8 +5,10 @@ an edit changes only the actors holding the parts it rebuilt, and the browser vi
 VTK local view, which sends an array only when its checksum is new) receives only their
 arrays.
 
-Surfaces are coloured by height (the preview's diverging map, symmetric about the flat
-fabric); the outlines show the constraint check: a patch's embroidery boundary, or a piece's
+Surfaces are coloured by height over the scene's actual range of heights, the flat fabric (0)
+included (``view_scale``): the preview's diverging map, white at the flat fabric, cut to the
+part the heights reach, so a height has the colour the canvas gives it. The outlines show the
+constraint check: a patch's embroidery boundary, or a piece's
 outline for a problem of the piece itself, is drawn red for an error and orange for a warning
 (``preview3d.colours.STATUS_RGB``), thicker than the plain outlines.
 """
@@ -26,7 +28,7 @@ HEIGHT = "height (mm)"
 #: ``stitchswitch preview``'s (the same builder), a quarter of its triangles: the browser's
 #: software WebGL and trame-vtk's checksums of every array on every update scale with it
 VIEW_N_THETA = 32
-VIEW_RING_STEP = 2
+VIEW_RING_STEP = 6
 #: patch surfaces are drawn by this many actors, a patch always in the same one (by its id):
 #: trame-vtk serializes every actor on every update (about 1 ms of CPU each), so one actor per
 #: patch costs more than resending a few patches' arrays with the edited one
@@ -46,10 +48,11 @@ class Scene3D:
         self.builder = SceneBuilder(VIEW_N_THETA, VIEW_RING_STEP)
         self.scene = None
         self.clim = (-1.0, 1.0)
+        self.cmap_range = (0.0, 1.0)
 
     def update(self, design) -> None:
         self.scene = self.builder.build(spec_from_design(design))
-        self.clim = colours.height_clim(self.scene)
+        self.cmap_range, self.clim = view_scale([p.height_mm for p in self.scene.patches])
 
     def parts(self, violations=()) -> dict:
         """{actor name: (kind, content, style)}: one "surface" per piece and per group of patches
@@ -72,6 +75,26 @@ class Scene3D:
                 colour, width = _hex(colours.STATUS_RGB[status]), FLAGGED_WIDTH
             out[f"lines:{kind}:{status}"] = ("lines", tuple(lines), (colour, width))
         return out
+
+
+def view_scale(heights) -> tuple[tuple[float, float], tuple[float, float]]:
+    """((a, b), (lo, hi)): the colour range (lo, hi) mm, the heights' actual range with the flat
+    fabric's 0 in it, and the part [a, b] of ``colours.HEIGHT_CMAP`` (0..1) it is drawn with:
+    the map runs from -H to H (H the largest |height|) so that 0 stays white and a height has
+    the colour of the canvas's symmetric map, and only the part the heights reach is used."""
+    lo = float(min([0.0, *heights]))
+    hi = float(max([0.0, *heights]))
+    h = max(-lo, hi, 1e-3)
+    lo, hi = (lo, hi) if hi > lo else (-h, h)
+    return (0.5 + 0.5 * lo / h, 0.5 + 0.5 * hi / h), (lo, hi)
+
+
+def _lookup_table(pv, cmap_range):
+    import matplotlib
+    from matplotlib.colors import ListedColormap
+
+    full = matplotlib.colormaps[colours.HEIGHT_CMAP]
+    return pv.LookupTable(cmap=ListedColormap(full(np.linspace(*cmap_range, 256))))
 
 
 def group_of(patch_id: str) -> int:
@@ -110,11 +133,15 @@ class PlotterSync:
         self._pv = pv
         self.plotter = plotter
         self.actors: dict = {}        # name -> [content, actor, mesh]
+        self._lut_range = None
+        self._lut = None
 
     def sync(self, scene3d: Scene3D, violations=()) -> dict:
         pv, pl = self._pv, self.plotter
         counts = {"added": 0, "rebuilt": 0, "removed": 0, "kept": 0}
         parts = scene3d.parts(violations)
+        if scene3d.cmap_range != self._lut_range:     # one colour table for every surface
+            self._lut, self._lut_range = _lookup_table(pv, scene3d.cmap_range), scene3d.cmap_range
         for name in [n for n in self.actors if n not in parts]:
             pl.remove_actor(self.actors.pop(name)[1], render=False)
             counts["removed"] += 1
@@ -127,7 +154,7 @@ class PlotterSync:
                 if entry is None:
                     if kind == "surface":
                         actor = pl.add_mesh(mesh, scalars=HEIGHT if mesh.n_points else None,
-                                            cmap="coolwarm", clim=scene3d.clim,
+                                            cmap=self._lut, clim=scene3d.clim,
                                             show_scalar_bar=False, name=name, render=False)
                     else:
                         actor = pl.add_mesh(mesh, color=style[0], line_width=style[1], name=name,
@@ -139,5 +166,7 @@ class PlotterSync:
                     entry[0] = content
                     counts["rebuilt"] += 1
             if kind == "surface":
-                self.actors[name][1].mapper.scalar_range = scene3d.clim
+                mapper = self.actors[name][1].mapper
+                mapper.lookup_table = self._lut
+                mapper.scalar_range = scene3d.clim
         return counts

@@ -40,6 +40,7 @@ class Session:
         self.exported = None              # the last export's FabricationResult
         self.view_box = None              # the canvas's zoomed / panned view (None: fit)
         self.dragging: tuple = ()         # patches being dragged (their edge rule is drawn)
+        self.drag_offset = None           # (dx, dy) mm the pointer has moved them (None: not yet)
         self.timings_s: dict = {}       # wall and CPU (process) time of the last check and scene
         #: True: an edit leaves the sidecar to ``write_autosave`` (the page writes it right after
         #: showing the edit, so the panel does not wait for the disk)
@@ -89,9 +90,21 @@ class Session:
         p = self.state.selected_patch()
         return None if p is None else readout(self.dmap, p.diameter_mm, p.fill)
 
+    def drag_to(self, dx_mm: float, dy_mm: float) -> None:
+        """The dragged patches follow the pointer, (dx, dy) mm from the press: the canvas draws
+        them there with their edge rule; the design changes on release (``move`` /
+        ``move_selection``)."""
+        self.drag_offset = (float(dx_mm), float(dy_mm)) if self.dragging else None
+
+    def end_drag(self) -> None:
+        self.dragging, self.drag_offset = (), None
+
     def canvas_svg(self) -> str:
         hoops = fabrication.hooping_outlines(self.order, self.eta) if self.order is not None else ()
-        return canvas.svg(self.state.design, heights_mm(self.dmap, self.state.design), self.eta,
+        design = self.state.design
+        if self.dragging and self.drag_offset is not None:
+            design = self.state.moved(self.dragging, *self.drag_offset)
+        return canvas.svg(design, heights_mm(self.dmap, design), self.eta,
                           self.state.selected, live_check.patch_status(self.violations), hoops,
                           self.view(), self.state.also_selected, self.dragging,
                           self.checker.limits)

@@ -176,13 +176,18 @@ class StudioState:
     def move_patches(self, patch_ids, dx_mm: float, dy_mm: float) -> None:
         """Move several patches by (dx, dy) mm in one undo step; each moves to the piece under
         its new centre if there is one."""
+        self._commit(self.moved(patch_ids, dx_mm, dy_mm), self.selected, also=self.also_selected)
+
+    def moved(self, patch_ids, dx_mm: float, dy_mm: float):
+        """The design with those patches moved by (dx, dy) mm, each to the piece under its new
+        centre if there is one (what ``move_patches`` commits; the canvas draws it while they
+        are dragged)."""
         moved = {}
         for pid in patch_ids:
             old = self.design.patch(pid)
             c = (old.centre_mm[0] + float(dx_mm), old.centre_mm[1] + float(dy_mm))
             moved[pid] = old.replace(centre_mm=c, piece=self.piece_at(c) or old.piece)
-        self._commit(self.design.with_patches([moved.get(p.id, p) for p in self.design.patches]),
-                     self.selected, also=self.also_selected)
+        return self.design.with_patches([moved.get(p.id, p) for p in self.design.patches])
 
     def set_pieces(self, pieces) -> None:
         """Replace the pieces (another size of a graded pattern) in one undo step; every patch
