@@ -44,6 +44,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import signal
 import sys
 import tempfile
 import time
@@ -239,6 +240,8 @@ def main(argv=None) -> int:
     ap.add_argument("--runs", type=int, default=30)
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args(argv)
+    # a terminated benchmark unwinds like Ctrl-C, so the studio server it started is stopped
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     rows = summary(measure(args.runs))
     load = os.getloadavg()[0]
     if args.json:
