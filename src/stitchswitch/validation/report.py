@@ -29,7 +29,6 @@ in a few seconds and cached.
 """
 from __future__ import annotations
 
-import io
 import json
 import logging
 import math
@@ -40,6 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from stitchswitch import __version__
+from stitchswitch.files.figures import plot_bytes
 from stitchswitch.files.html_page import Figure, Gallery, Paragraph, Section, Table, code, inline, page, strong
 from stitchswitch.files.jsonsafe import json_safe
 from stitchswitch.files.outdir import building, check_outdir, previous_output
@@ -148,10 +148,7 @@ def _scatter(ax, k: int, q: str, measured, pred: Predictions, splits, show_legen
 
 
 def _png(fig) -> bytes:
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png")
-    _pyplot().close(fig)
-    return buf.getvalue()
+    return plot_bytes(fig)
 
 
 def _figures(data: MeasuredData, pred: Predictions, material: Material, tmp: Path) -> None:

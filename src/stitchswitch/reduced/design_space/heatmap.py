@@ -1,11 +1,10 @@
 """The h(d, p) heatmap of a design map, like the paper's Fig. 4 (left), as a PNG."""
 from __future__ import annotations
 
-import io
-
 import numpy as np
 
 from stitchswitch.files.atomic import atomic_write_bytes
+from stitchswitch.files.figures import plot_bytes
 from stitchswitch.reduced.design_space.design_map import FLAG_NAMES, FLAG_SMOOTH, DesignMap
 
 _MARKERS = {"branch change": ("x", "black"), "buckling onset": ("o", "white"),
@@ -44,7 +43,4 @@ def plot_height_map(dmap: DesignMap, path, points=None, title: str | None = None
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="lower right", fontsize=7, framealpha=0.8)
     fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png")
-    plt.close(fig)
-    atomic_write_bytes(path, buf.getvalue())
+    atomic_write_bytes(path, plot_bytes(fig))
