@@ -37,5 +37,5 @@ class SmallPieces:
 def small_piece_warnings(design, limits) -> list[SmallPieces]:
     """The patches of ``design`` with small pieces at ``limits.resolution_mm``, in design order
     (a patch that cannot be tessellated is the geometry rule's violation, not listed here)."""
-    return [SmallPieces(patch.id, patch.piece, small_pieces(g))
-            for patch, g in tessellated(design, limits.resolution_mm) if small_pieces(g)]
+    counts = ((patch, small_pieces(g)) for patch, g in tessellated(design, limits.resolution_mm))
+    return [SmallPieces(patch.id, patch.piece, n) for patch, n in counts if n]
