@@ -10,9 +10,7 @@ backwards). Local, so it needs a good start:
 * the starting model: optionally a short differential evolution over the free coefficients
   (``reduced.calibration.evolution.calibrate``), then least squares;
 * with an effect (``fit_effect``): two starts, the one with the lower misfit refined by least
-  squares (``refine_both``: each, the better fit kept; the misfit can have two basins, e.g. a
-  small and a large natural curvature): a
-  one-dimensional scan of the effect's strength with the starting model's fitted
+  squares: a one-dimensional scan of the effect's strength with the starting model's fitted
   coefficients (``scan_values``: geometric steps from the probe value to the bound, each sign
   for a signed parameter), and the linearized joint step (``linearized_start``: one
   Gauss-Newton step in the coefficients and the strength together, from the starting model's
@@ -179,22 +177,18 @@ def linearized_start(spec, x_base, J0, sig, residual) -> np.ndarray:
 
 
 def fit_effect(spec, ev, designs, measured, base_fit, J0, sig, *, max_nfev: int = 20,
-               scan_points: int = 5, refine_both: bool = False) -> tuple[Fit, dict]:
+               scan_points: int = 5) -> tuple[Fit, dict]:
     """Fit the starting model plus ``spec``'s effect; see the module docstring. Returns the fit
-    and {"scan": [(values, mse)], "start": the start whose refinement won}. ``refine_both``:
-    refine both starts (else only the one with the lower misfit)."""
+    and {"scan": [(values, mse)], "start": the start whose refinement won}."""
     measured = np.asarray(measured, dtype=float)
     x_scan, table, others = scan_effect(spec, ev, designs, measured, base_fit.x, scan_points, J0)
     x_lin = linearized_start(spec, base_fit.x, J0, sig, measured - base_fit.predictions)
     starts = {"linearized": x_lin, "scan": x_scan}
     preds = ev.keypoints(spec, [x_lin, x_scan] + others[:1], designs)
     score = {k: float(np.mean((p - measured) ** 2)) for k, p in zip(starts, preds)}
-    if refine_both:
-        fits = {k: fit(spec, ev, designs, measured, x, max_nfev=max_nfev) for k, x in starts.items()}
-    else:
-        # only the start with the lower misfit is refined (half the cost; both are evaluated)
-        best = min(score, key=lambda k: (score[k], k))
-        fits = {best: fit(spec, ev, designs, measured, starts[best], max_nfev=max_nfev)}
+    # only the start with the lower misfit is refined (half the cost; both are evaluated)
+    best = min(score, key=lambda k: (score[k], k))
+    fits = {best: fit(spec, ev, designs, measured, starts[best], max_nfev=max_nfev)}
     if others:
         second = float(np.mean((preds[2] - measured) ** 2))
         if second <= (1.0 + SECOND_BASIN) * min(score.values()):

@@ -297,8 +297,7 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
         spec = base_c.then(name)
         sig = sigs[name]
         f, _ = fit_effect(spec, ev, d_tr, m_fit, first_screen, J, sig,
-                          max_nfev=config.screen_max_nfev, scan_points=config.scan_points + 2,
-                          refine_both=False)
+                          max_nfev=config.screen_max_nfev, scan_points=config.scan_points + 2)
         cv = cross_validate(spec, ev, d_tr, m_fit, f.x, labels, max_nfev=1)
         if best is None or cv.score_mm2 < best[2]:
             best = (name, f, cv.score_mm2)
@@ -314,20 +313,19 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
     zero = _zero(spec_f, ff.x)
     out = {"effect": name, "after": first.effect, "threshold": threshold, "zero_strength": zero,
            "parameters": spec_f.describe(ff.x), "spec": spec_f, "x": ff.x}
+    rejected = {"cv_mse_mm2": None, "cv_mse_first_only_mm2": None, "significant": False}
     if zero or not passes(rss(fit_a), ff):
         # cannot pass: the equal-footing re-polish only lowers the first model's RSS, so the
         # test fails whatever the cross-validations say; they are not run
         F, p = f_test(rss(fit_a), rss(ff), m_fit.size, base_f.size, spec_f.size)
-        return {**out, "f_statistic": F, "p_value": p, "cv_mse_mm2": None,
-                "cv_mse_first_only_mm2": None, "significant": False}
+        return {**out, "f_statistic": F, "p_value": p, **rejected}
     fit_a, _ = equal_footing(base_f, ev, d_tr, m_fit, fit_a, {name: ff}, passes,
                              max_nfev=config.fit_max_nfev,
                              screen_spec=base_c if base_c != base_f else None,
                              polish_max_nfev=config.polish_max_nfev)
     F, p = f_test(rss(fit_a), rss(ff), m_fit.size, base_f.size, spec_f.size)
     if p >= threshold:
-        return {**out, "f_statistic": F, "p_value": p, "cv_mse_mm2": None,
-                "cv_mse_first_only_mm2": None, "significant": False}
+        return {**out, "f_statistic": F, "p_value": p, **rejected}
     cv_a = cross_validate(base_f, ev, d_tr, m_fit, fit_a.x, labels, max_nfev=config.cv_max_nfev)
     cv_f = cross_validate(spec_f, ev, d_tr, m_fit, ff.x, labels, max_nfev=config.cv_max_nfev)
     return {**out, "f_statistic": F, "p_value": p, "cv_mse_mm2": cv_f.score_mm2,
