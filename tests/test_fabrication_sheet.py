@@ -3,7 +3,6 @@ per hooping the steps in order with the colour stops and why its hoop, the algor
 only at the end, and the same content in Markdown, HTML and fabrication.json."""
 import json
 
-from stitchswitch.layout.embroidery.jef_palette import sheet_colour_names
 from test_cli_fabricate import SMALL, patch, write_design
 
 from helpers import cli_run as run
@@ -39,6 +38,15 @@ def test_sheet_reads_in_workshop_order(tmp_path):
         assert f"Load {h['files']['embroidery']} on the machine." in html
 
 
+def _sheet_name(thread: dict) -> str:
+    """The thread's name on the sheet, as docs/fabrication.md gives it, from fabrication.json."""
+    j = thread.get("jef_thread")
+    if j is None:
+        return thread["colour"]
+    return (f"{j['name']}, Janome {j['number']} (JEF colour {j['index']}, design colour "
+            f"{thread['colour']})")
+
+
 def test_colour_stops_say_what_to_do(tmp_path):
     """Patch a has a conductive ring: its hooping's file has one colour change, and the sheet
     says to change the bobbin there, and to put the normal one back after the file."""
@@ -48,7 +56,7 @@ def test_colour_stops_say_what_to_do(tmp_path):
     assert h["colour_changes"] == 1
     part = md.split(f"### Hooping {h['number']}")[1].split("### Hooping")[0]
     steps = [line for line in part.splitlines() if line[:1].isdigit()]
-    names = sheet_colour_names([t["colour"] for t in h["threads"]], h["files"]["embroidery"])
+    names = [_sheet_name(t) for t in h["threads"]]
     top = [t for t in h["threads"] if t["role"] == "top"][0]
     assert any(s.endswith(f"Thread {names[0]} on top, a normal bobbin in; the machine "
                           f"sews {', '.join(top['patches'])}.") for s in steps)

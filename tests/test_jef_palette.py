@@ -10,7 +10,8 @@ from hypothesis import strategies as hs
 
 from stitchswitch.layout.embroidery import export
 from stitchswitch.layout.embroidery import stitches as st
-from stitchswitch.layout.embroidery.jef_palette import jef_threads, palette, sheet_colour_names
+from stitchswitch.layout.embroidery.jef_palette import jef_threads, palette
+from stitchswitch.layout.fabrication.document import Thread
 
 from decoders import dst, jef
 from helpers import cli_run as run
@@ -64,10 +65,11 @@ def test_the_written_jef_stores_the_threads_we_name(rgbs):
 
 
 def test_sheet_names_jef_threads_only_for_jef_files():
-    names = sheet_colour_names(["#1b1b1b", "#b0b0b0"], "hoop01.jef")
+    jefs = jef_threads(["#1b1b1b", "#b0b0b0"])
+    names = [Thread("top", c, ("a",), j).sheet_name() for c, j in zip(["#1b1b1b", "#b0b0b0"], jefs)]
     assert names[0].startswith("Dark Sepia, Janome 260 (JEF colour 58")
     assert "design colour #b0b0b0" in names[1]
-    assert sheet_colour_names(["#1b1b1b"], "hoop01.dst") == ["#1b1b1b"]
+    assert Thread("top", "#1b1b1b", ("a",)).sheet_name() == "#1b1b1b"
 
 
 def _design(path):

@@ -14,8 +14,8 @@
 * ``machines``: the machine and hoop catalogue, the one API for both (``catalogue``,
   ``Catalogue.machine``, ``Machine.hoop`` / ``largest_hoop`` / ``choose_hoop``,
   ``DEFAULT_MACHINE``, ``load_machines``); ``hoop_spec``: ``Hoop`` and its JEF codes;
-  ``jef_palette``: the Janome palette thread a JEF names for each colour block (``jef_threads``,
-  ``sheet_colour_names``).
+  ``jef_palette``: the Janome palette thread a JEF names for each colour block (``jef_threads``;
+  ``JefThread.sheet_text`` is how the fabrication sheet names it).
 
 Below ``garment``, ``check`` and ``fabrication``; imports nothing of them.
 """

@@ -20,8 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Sequence
 
-__all__ = ["JefThread", "is_jef", "palette", "jef_threads", "machine_thread_text",
-           "sheet_colour_names"]
+__all__ = ["JefThread", "is_jef", "palette", "jef_threads", "machine_thread_text"]
 
 
 @dataclass(frozen=True)
@@ -99,11 +98,3 @@ def jef_threads(colours: Sequence) -> tuple[JefThread, ...]:
 def machine_thread_text(colours: Sequence) -> list[str]:
     """For each block: "<name> (Janome <number>, JEF colour <index>)"."""
     return [t.text() for t in jef_threads(colours)]
-
-
-def sheet_colour_names(colours: Sequence[str], embroidery_file: str) -> list[str]:
-    """How the fabrication sheet names each block's thread: the design's colour and, when the
-    hooping's file is a JEF, the palette thread the machine will show for it."""
-    if not is_jef(embroidery_file):
-        return [str(c) for c in colours]
-    return [t.sheet_text(c) for c, t in zip(colours, jef_threads(colours))]
