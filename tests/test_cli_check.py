@@ -67,6 +67,20 @@ def test_geometry_violation_prints_no_value(tmp_path, design):
     assert r.exit_code == 1 and v[0]["rule"] == "geometry" and v[0]["value"] is None
 
 
+def test_library_report_is_what_check_prints(tmp_path, design):
+    """``check_report`` (what the demo writes as check.json) gives the CLI's JSON body, and a
+    rule with no measured value is null there too, so it serializes without NaN."""
+    from stitchswitch.layout.check.report import check_report
+    from stitchswitch.layout.garment.design_io import load_design
+
+    assert run("place", design, "--piece", "panel", "--at", "150,150", "-d", "20", "-p", "1",
+               "--conductive", "index:500").exit_code == 0
+    out = json.loads(run("check", design, "--json").output)
+    body = json.loads(json.dumps(check_report(load_design(design)).as_dict(), allow_nan=False))
+    assert body["violations"][0]["value"] is None and body["errors"] >= 1
+    assert body == {k: out[k] for k in body}
+
+
 @pytest.mark.parametrize("args,message", [
     (["--min-gap", "-1"], "min_gap_mm: -1.0 must be >= 0"),
     (["--resolution", "nan"], "'nan' is not a finite number"),

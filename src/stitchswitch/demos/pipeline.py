@@ -53,10 +53,11 @@ def run_demo(demo, outdir, *, force: bool = False, echo=print, time_limit_s: flo
             save_design(built.design, tmp / "design.json")
             design = load_design(tmp / "design.json")      # as a user's file: named, hashed
         with timer(2):
-            violations, small = _check(design)
-            atomic_write_text(tmp / "check.json", _json({
-                "clean": not violations, "violations": [v.as_dict() for v in violations],
-                "small_pieces": [w.as_dict() for w in small]}))
+            from stitchswitch.layout.check.report import check_report
+
+            report = check_report(design)
+            violations = report.violations
+            atomic_write_text(tmp / "check.json", _json(report.as_dict()))
         with timer(3):
             _preview(design, tmp, demo.preview_view)
         with timer(4):
@@ -95,15 +96,6 @@ class _Step:
 
 def _json(obj) -> str:
     return json.dumps(obj, indent=2, allow_nan=False) + "\n"
-
-
-def _check(design):
-    """The check's violations and its small-pieces warnings, at the default limits."""
-    from stitchswitch.layout.check.constraints import CheckLimits, check_design
-    from stitchswitch.layout.check.small_pieces import small_piece_warnings
-
-    limits = CheckLimits()
-    return check_design(design, limits), small_piece_warnings(design, limits)
 
 
 def _preview(design, tmp: Path, view: str) -> None:

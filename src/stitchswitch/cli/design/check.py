@@ -8,8 +8,8 @@ import math
 import click
 
 from stitchswitch.cli import options
-from stitchswitch.layout.check.constraints import CheckLimits, check_design
-from stitchswitch.layout.check.small_pieces import small_piece_warnings
+from stitchswitch.layout.check.constraints import CheckLimits
+from stitchswitch.layout.check.report import check_report
 from stitchswitch.layout.garment.design_io import load_design
 
 _DEFAULT = CheckLimits()
@@ -18,10 +18,6 @@ _DEFAULT = CheckLimits()
 def _limit_opt(name: str, field: str, help_text: str):
     return click.option(name, field, type=options.FINITE_FLOAT, default=getattr(_DEFAULT, field),
                         show_default=True, metavar="MM", help=help_text)
-
-
-def _number(v: float):
-    return v if math.isfinite(v) else None
 
 
 @click.command(cls=options.Command)
@@ -57,17 +53,12 @@ def check(design, as_json, blank_margin_mm, **limits):
     d = load_design(design)
     if blank_margin_mm is not None:
         d = dataclasses.replace(d, blank_margin_mm=blank_margin_mm)
-    found = check_design(d, lim)
-    small = small_piece_warnings(d, lim)
-    errors = sum(v.severity == "error" for v in found)
+    report = check_report(d, lim)
+    found, small, errors = report.violations, report.small_pieces, report.errors
     if as_json:
+        body = report.as_dict()
         out = {"design": design, "patches": len(d.patches), "pieces": len(d.pieces),
-               "limits": lim.as_dict(), "blank_margin_mm": d.blank_margin_mm,
-               "clean": not found,
-               "errors": errors, "warnings": len(found) - errors,
-               "violations": [dict(v.as_dict(), value=_number(v.value), limit=_number(v.limit))
-                              for v in found],
-               "small_pieces": [w.as_dict() for w in small]}
+               "limits": body.pop("limits"), "blank_margin_mm": d.blank_margin_mm, **body}
         click.echo(json.dumps(out, indent=2, allow_nan=False))
     else:
         if found:
