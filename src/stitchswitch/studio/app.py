@@ -133,6 +133,7 @@ def build_app(session, server=None):
                 state.conductive = p.conductive or ""
             state.canvas_svg = session.canvas_svg()
             state.violations = live_check.rows(session.violations)
+            state.small_pieces = live_check.small_rows(session.small_pieces)
             state.n_errors = live_check.errors(session.violations)
             state.can_undo, state.can_redo = s.can_undo, s.can_redo
             state.dirty = session.document.dirty(s.design)
@@ -367,7 +368,7 @@ def build_app(session, server=None):
                   "diameter": 60.0, "fill": 0.5, "patch_state": "up", "readout_stamp": 0,
                   "selection": [], "composite_on": False, "core_d": 20.0, "core_fill": 0.9,
                   "conductive": "", "sizes": session.sizes, "size": session.size,
-                  "plan_k": 0, "plan_svg": "", "plan_counts": {}, "placing": None, "scene_stamp": 0,
+                  "small_pieces": [], "plan_k": 0, "plan_svg": "", "plan_counts": {}, "placing": None, "scene_stamp": 0,
                   "drag_stamp": 0,
                   "timings": {}})
 
@@ -457,6 +458,8 @@ def build_app(session, server=None):
                 with html.Div(v_for="v in violations", key="v.index", classes="text-body-2 violation",
                               click=(on_violation, "[v.index]"), style="cursor:pointer"):
                     html.Span("{{ v.severity }} {{ v.rule }}: {{ v.message }}")
+                html.Div("{{ w }}", v_for="w in small_pieces", key="w",
+                         classes="text-body-2 small-pieces")
             with html.Div(v_if="mode == 'fabrication'", classes="pa-2"):
                 v3.VSelect(v_model=("fab_mode",), items=("['garment', 'free']",), label="grouping",
                            density="compact")
