@@ -175,6 +175,9 @@ def test_studio_in_chromium(tmp_path):
             assert saved.patch("p1").centre_mm[0] == pytest.approx(100.0, abs=3.0)
             r = CliRunner().invoke(cli, ["check", str(path)])
             assert r.exit_code == 0, r.output
+            # ... and the panel shows the small-pieces warnings check prints, word for word
+            assert page.locator(".small-pieces").all_inner_texts() == [
+                ln for ln in r.output.splitlines() if ln.startswith("warning: ")]
             # Fabrication Mode: group and export; the JEF read back by the independent decoder
             page.locator("#mode-fabrication").click()
             page.locator("#group").click()
