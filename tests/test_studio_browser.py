@@ -70,6 +70,11 @@ def test_studio_in_chromium(tmp_path):
             circles = page.locator("#canvas circle")
             assert circles.count() == 1
             shot(page, tmp_path, "open")
+            # headless chromium has no GPU: the view's WebGL context is software and single-sampled
+            page.wait_for_selector("#view3d canvas")
+            assert "SwiftShader" in page.evaluate("window.studioSoftwareGL")
+            assert page.evaluate("document.querySelector('#view3d canvas').getContext('webgl2')"
+                                 ".getContextAttributes().antialias") is False
             # add a patch by clicking on an empty spot of the piece: it becomes the selection
             page.mouse.click(*to_px(page, view, 60.0, 150.0))
             page.wait_for_function("document.querySelectorAll('#canvas circle').length == 2")
