@@ -70,6 +70,11 @@ def test_studio_in_chromium(tmp_path):
             circles = page.locator("#canvas circle")
             assert circles.count() == 1
             shot(page, tmp_path, "open")
+            # headless chromium has no GPU: the view's WebGL context is software and single-sampled
+            page.wait_for_selector("#view3d canvas")
+            assert "SwiftShader" in page.evaluate("window.studioSoftwareGL")
+            assert page.evaluate("document.querySelector('#view3d canvas').getContext('webgl2')"
+                                 ".getContextAttributes().antialias") is False
             # add a patch by clicking on an empty spot of the piece: it becomes the selection
             page.mouse.click(*to_px(page, view, 60.0, 150.0))
             page.wait_for_function("document.querySelectorAll('#canvas circle').length == 2")
@@ -175,6 +180,9 @@ def test_studio_in_chromium(tmp_path):
             assert saved.patch("p1").centre_mm[0] == pytest.approx(100.0, abs=3.0)
             r = CliRunner().invoke(cli, ["check", str(path)])
             assert r.exit_code == 0, r.output
+            # ... and the panel shows the small-pieces warnings check prints, word for word
+            assert page.locator(".small-pieces").all_inner_texts() == [
+                ln for ln in r.output.splitlines() if ln.startswith("warning: ")]
             # Fabrication Mode: group and export; the JEF read back by the independent decoder
             page.locator("#mode-fabrication").click()
             page.locator("#group").click()

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.layout.check.constraints import check_design
+from stitchswitch.layout.check.constraints import CheckLimits, check_design
+from stitchswitch.layout.check.small_pieces import small_piece_warnings
 from stitchswitch.layout.garment.design import Design, MachineSpec, MaterialRef, PatchSpec
 from stitchswitch.layout.garment.piece_select import rectangle_piece
 from stitchswitch.preview3d import colours
@@ -126,6 +127,24 @@ def test_incremental_check_is_the_library_check(pieces):
         assert live.rechecked <= 2
         seen |= {v.rule for v in got}
     assert {"piece-edge", "feature-side"} <= seen            # the edits did break rules
+
+
+def test_incremental_small_pieces_are_the_library_warnings():
+    s = StudioState(grid_design())
+    live = LiveCheck()
+    live.run(s.design)
+    assert live.small == small_piece_warnings(s.design, CheckLimits())
+    seen = {tuple(w.patch for w in live.small)}
+    for d, fill in ((80.0, 0.3), (80.0, 0.9), (30.0, 0.7), (40.0, 0.3)):
+        s.edit_patch("p1", diameter_mm=d, fill=fill)
+        live.run(s.design)
+        assert live.small == small_piece_warnings(s.design, CheckLimits())
+        assert live.rechecked == 1
+        seen.add(tuple((w.patch, w.count) for w in live.small))
+    for _ in edits(s):
+        live.run(s.design)
+        assert live.small == small_piece_warnings(s.design, CheckLimits())
+    assert len(seen) >= 3                        # the warnings did change with the edits
 
 
 def test_view_actors_follow_the_scene_and_show_the_check():

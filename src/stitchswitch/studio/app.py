@@ -49,6 +49,27 @@ ZOOM_STEP = 1.25
 SCENE_DELAY_S = 0.15
 #: the page's acknowledgement that it has drawn the panel of an edit
 PANEL_SHOWN = "window.requestAnimationFrame(() => trigger('studio_panel_shown'))"
+#: run by the page before the 3D view makes its WebGL context: on a software WebGL renderer
+#: (no GPU: SwiftShader, llvmpipe) the view's context is made without multisampling. vtk.js
+#: asks for the browser's default, antialiased (4x multisampled) drawing buffer, and a
+#: software renderer rasterizes and resolves every sample: it made the frame of the
+#: 40-patch scene take 215 instead of 48 ms (docs/studio.md, "Speed"). With a GPU the
+#: default stays.
+SOFTWARE_GL_NO_MSAA = """(() => {
+  const probe = document.createElement('canvas').getContext('webgl2');
+  if (!probe) return;
+  const info = probe.getExtension('WEBGL_debug_renderer_info');
+  const name = String(probe.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : probe.RENDERER));
+  const lose = probe.getExtension('WEBGL_lose_context');
+  if (lose) lose.loseContext();
+  if (!/swiftshader|llvmpipe|softpipe|software/i.test(name)) return;
+  const getContext = HTMLCanvasElement.prototype.getContext;
+  HTMLCanvasElement.prototype.getContext = function (type, attrs) {
+    if (type === 'webgl2' || type === 'webgl') attrs = Object.assign({}, attrs, {antialias: false});
+    return getContext.call(this, type, attrs);
+  };
+  window.studioSoftwareGL = name;
+})();"""
 #: the 3D view's name on the page (its full scene state is the state key ``scene_`` + it)
 VIEW_REF = "studio_view"
 READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_b_mm"),
@@ -112,6 +133,7 @@ def build_app(session, server=None):
                 state.conductive = p.conductive or ""
             state.canvas_svg = session.canvas_svg()
             state.violations = live_check.rows(session.violations)
+            state.small_pieces = live_check.small_rows(session.small_pieces)
             state.n_errors = live_check.errors(session.violations)
             state.can_undo, state.can_redo = s.can_undo, s.can_redo
             state.dirty = session.document.dirty(s.design)
@@ -346,7 +368,7 @@ def build_app(session, server=None):
                   "diameter": 60.0, "fill": 0.5, "patch_state": "up", "readout_stamp": 0,
                   "selection": [], "composite_on": False, "core_d": 20.0, "core_fill": 0.9,
                   "conductive": "", "sizes": session.sizes, "size": session.size,
-                  "plan_k": 0, "plan_svg": "", "plan_counts": {}, "placing": None, "scene_stamp": 0,
+                  "small_pieces": [], "plan_k": 0, "plan_svg": "", "plan_counts": {}, "placing": None, "scene_stamp": 0,
                   "drag_stamp": 0,
                   "timings": {}})
 
@@ -436,6 +458,8 @@ def build_app(session, server=None):
                 with html.Div(v_for="v in violations", key="v.index", classes="text-body-2 violation",
                               click=(on_violation, "[v.index]"), style="cursor:pointer"):
                     html.Span("{{ v.severity }} {{ v.rule }}: {{ v.message }}")
+                html.Div("{{ w }}", v_for="w in small_pieces", key="w",
+                         classes="text-body-2 small-pieces")
             with html.Div(v_if="mode == 'fabrication'", classes="pa-2"):
                 v3.VSelect(v_model=("fab_mode",), items=("['garment', 'free']",), label="grouping",
                            density="compact")
@@ -463,6 +487,7 @@ def build_app(session, server=None):
                          mousemove=DRAG,
                          wheel=(on_wheel, WHEEL),
                          keydown=(on_key, "[$event.key]"))
+                client.Script(SOFTWARE_GL_NO_MSAA)      # before the view makes its context
                 with html.Div(style="flex:1; min-width:0", id="view3d"):
                     # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js has
                     # the new geometry, its arrays fetched), counted for the benchmark and tests

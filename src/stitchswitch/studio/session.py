@@ -34,6 +34,7 @@ class Session:
         self.scene3d = scene3d
         self.checker = live_check.LiveCheck()
         self.violations: list = []
+        self.small_pieces: list = []      # check's small-pieces warnings (not violations)
         self.candidates: list = []
         self.order = None
         self.order_mode = "garment"
@@ -56,6 +57,7 @@ class Session:
     def refresh_check(self) -> None:
         t0, c0 = time.perf_counter(), time.process_time()
         self.violations = self.checker.run(self.state.design)
+        self.small_pieces = self.checker.small       # the warnings check prints beside them
         self.timings_s["check_s"] = time.perf_counter() - t0
         self.timings_s["check_cpu_s"] = time.process_time() - c0
 
