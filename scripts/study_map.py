@@ -7,6 +7,11 @@ flags), where the sweep alone differs from the direct solves, and which cold sol
 certified.
 
     python scripts/study_map.py [--workers N] [--json]
+
+``--compare OLD.npz NEW.npz`` instead lists where two maps of the same grid hold another
+equilibrium (h differs by more than 0.05 mm): the changes of branch a change of the solver's
+path makes (docs/design-map.md), with the energy change of each, and the largest differences
+elsewhere.
 """
 from __future__ import annotations
 
@@ -35,11 +40,56 @@ def _sweep_row(args):
     return [s.keypoints.h_mm for s in precompute._sweep(d, fills, DEFAULT_MATERIAL, True)]
 
 
+#: |h| difference (mm) above which two maps hold another equilibrium at a point.
+BRANCH_MM = 0.05
+
+
+def compare(old_path, new_path) -> dict:
+    """The points where two maps hold different equilibria, and the largest differences
+    elsewhere."""
+    from stitchswitch.reduced.design_space.storage import load_map
+
+    old, new = load_map(old_path), load_map(new_path)
+    if not (np.array_equal(old.diameter_mm, new.diameter_mm) and np.array_equal(old.fill, new.fill)):
+        raise SystemExit("study_map --compare: the two maps have different grids")
+    dh = new.h_mm - old.h_mm
+    rel_e = (new.energy - old.energy) / np.abs(old.energy)
+    moved = np.abs(dh) > BRANCH_MM
+    return {
+        "points": int(dh.size),
+        "changes_of_branch": [
+            {"d_mm": float(old.diameter_mm[i]), "fill": float(old.fill[j]),
+             "h_old_mm": float(old.h_mm[i, j]), "h_new_mm": float(new.h_mm[i, j]),
+             "energy_rel_change": float(rel_e[i, j])} for i, j in np.argwhere(moved)],
+        "elsewhere_max_abs_dh_mm": float(np.abs(dh[~moved]).max()),
+        "elsewhere_max_energy_rel_change": float(np.abs(rel_e[~moved]).max()),
+        "flags_moved": int((old.flags != new.flags).sum()),
+        "flagged_old": int((old.flags != 0).sum()), "flagged_new": int((new.flags != 0).sum()),
+        "new_all_certified": bool(new.converged.all()),
+    }
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--json", action="store_true")
+    ap.add_argument("--compare", nargs=2, metavar=("OLD", "NEW"))
     args = ap.parse_args(argv)
+    if args.compare:
+        report = compare(*args.compare)
+        if args.json:
+            json.dump(report, sys.stdout, indent=1)
+            print()
+            return 0
+        for k, v in report.items():
+            if k == "changes_of_branch":
+                print(f"{k}: {len(v)}")
+                for c in v:
+                    print(f"  d {c['d_mm']:.0f} mm, p {c['fill']:.2f}: h {c['h_old_mm']:.2f} -> "
+                          f"{c['h_new_mm']:.2f} mm, energy {c['energy_rel_change']:+.1e} (relative)")
+            else:
+                print(f"{k:34s} {v}")
+        return 0
     t = time.perf_counter()
     warm = precompute.build(workers=args.workers)
     warm_s = time.perf_counter() - t

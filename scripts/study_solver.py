@@ -94,9 +94,9 @@ def work_per_iteration() -> dict:
         return out
 
     def direction(*args):
-        d, shift = step.direction.py_func(*args)
+        d, shift, raised = step.direction.py_func(*args)
         events.append(("direction", shift))
-        return d, shift
+        return d, shift, raised
 
     energy = counted("energy", fused.energy)
 
@@ -177,7 +177,7 @@ def parts(design=(55.0, 1.0)) -> dict:
     free = step.stationarity(grad, retraction.drops(z))[1]
     dof_map, n_band, m = bordered.indices(n, free)
     At, B, C = bordered.restrict(hb, dof_map, n_band, m)
-    d, _ = step.direction(At, B, C, grad, dof_map, 0.0)
+    d, _, _ = step.direction(At, B, C, grad, dof_map, 0.0, False)
     curve = retraction.polar(r, z, 1e-3 * d)
     from stitchswitch.reduced.model.terms import bending
     from stitchswitch.reduced.model.terms.segment import segment_lengths
@@ -190,7 +190,7 @@ def parts(design=(55.0, 1.0)) -> dict:
         "  energy alone": _cpu_us(fused.energy, r, z, c),
         "    of which bending": _cpu_us(bending.energy_lengths, r, z, c[5][0], lengths),
         "restriction": _cpu_us(bordered.restrict, hb, dof_map, n_band, m),
-        "factor and solve (direction)": _cpu_us(step.direction, At, B, C, grad, dof_map, 0.0),
+        "factor and solve (direction)": _cpu_us(step.direction, At, B, C, grad, dof_map, 0.0, False),
         "polar step": _cpu_us(retraction.polar, r, z, d),
     }
 

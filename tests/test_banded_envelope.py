@@ -1,9 +1,7 @@
-"""The envelope-limited banded Cholesky (``banded.factor``, ``banded.solve_factored``) against
-the full-band elimination it replaces (dpbtf2's loops over every entry of the band): the same
-numbers bit for bit on bands made wide by long merged z groups, which is what keeps the
-solver's iterates (and every certified result) unchanged."""
-import math
-
+"""The envelope-limited banded factor (``banded.factor_rows``, ``banded.solve_rows``) against
+the full-band elimination (the same root-free loops over every entry of the band): the same
+numbers bit for bit on bands made wide by long merged z groups, so the envelope skips only
+updates by exact zeros and does not change the solver's iterates."""
 import numpy as np
 import pytest
 from numba import njit
@@ -16,27 +14,25 @@ from helpers import solver_states
 
 
 @njit(fastmath=banded.CONTRACT)
-def _full_band_factor(ab, shift):
-    """dpbtf2's right-looking elimination over the whole band width (the previous loops,
-    compiled with the same floating-point contraction)."""
-    kd, n = ab.shape[0] - 1, ab.shape[1]
-    L = ab.copy()
+def _full_band_factor(At, shift):
+    """The root-free right-looking elimination over the whole band width (band rows, compiled
+    with the same floating-point contraction)."""
+    n, kd = At.shape[0], At.shape[1] - 1
+    F = At.copy()
     for j in range(n):
-        L[0, j] += shift
+        F[j, 0] += shift
     for j in range(n):
-        if not L[0, j] > 0.0:
-            return L, j + 1
-        ajj = math.sqrt(L[0, j])
-        L[0, j] = ajj
+        if not F[j, 0] > 0.0:
+            return F, j + 1
+        inv = 1.0 / F[j, 0]
+        F[j, 0] = inv
         kn = min(kd, n - 1 - j)
-        inv = 1.0 / ajj
-        for p in range(1, kn + 1):
-            L[p, j] *= inv
         for q in range(1, kn + 1):
-            t = -L[q, j]
+            t = -F[j, q] * inv
             for p in range(q, kn + 1):
-                L[p - q, j + q] += L[p, j] * t
-    return L, 0
+                F[j + q, p - q] += F[j, p] * t
+            F[j, q] = -t
+    return F, 0
 
 
 def _merged_band(rng, n_nodes):
@@ -59,15 +55,17 @@ def test_factor_is_the_full_band_elimination_bit_for_bit_on_wide_bands(seed):
     ends = banded.envelope(ab)
     assert np.sum(ends) < 0.5 * ab.shape[1] * (ab.shape[0] - 1)  # most columns are short
     shift = float(rng.uniform(0.0, 1.0))
-    L, info = banded.factor(ab, shift)
-    L_ref, info_ref = _full_band_factor(ab, shift)
+    At = np.ascontiguousarray(ab.T)
+    F, _, info = banded.factor_rows(At, shift)
+    F_ref, info_ref = _full_band_factor(At, shift)
     assert info == info_ref == 0
-    assert np.array_equal(L, L_ref)
+    assert np.array_equal(F, F_ref)
     shifted = ab.copy()
     shifted[0] += shift
+    L = banded.factor(ab, shift)[0]
     np.testing.assert_allclose(L, dpbtrf(shifted, lower=1)[0], rtol=1e-12, atol=1e-13)
     for j, e in enumerate(ends):                             # zero below the envelope
-        assert not np.any(L_ref[e + 1:, j])
+        assert not np.any(F_ref[j, e + 1:])
     b = rng.standard_normal(ab.shape[1])
     x = banded.solve_factored(L, b)
     dense = np.zeros((ab.shape[1],) * 2)
@@ -80,7 +78,7 @@ def test_factor_is_the_full_band_elimination_bit_for_bit_on_wide_bands(seed):
 def test_an_indefinite_wide_band_fails_where_the_full_elimination_does():
     ab = _merged_band(np.random.default_rng(7), 60)
     ab[0, 30] = -1e3
-    assert banded.factor(ab, 0.0)[1] == _full_band_factor(ab, 0.0)[1] > 0
+    assert banded.factor(ab, 0.0)[1] == _full_band_factor(np.ascontiguousarray(ab.T), 0.0)[1] > 0
 
 
 @pytest.mark.parametrize("design", [(40.0, 1.0), (70.0, 0.8)])
@@ -92,12 +90,13 @@ def test_factor_and_solve_equal_the_full_band_ones_on_solver_states(design):
         ab = bordered.restrict(hb, dof_map, n_red, 0)[0].T
         widest = max(widest, ab.shape[0] - 1)
         shift = 1e-3 * np.abs(ab[0]).mean()
-        L, info = banded.factor(ab, shift)
-        L_ref, info_ref = _full_band_factor(ab, shift)
+        At = np.ascontiguousarray(ab.T)
+        F, ends, info = banded.factor_rows(At, shift)
+        F_ref, info_ref = _full_band_factor(At, shift)
         assert info == info_ref
         if info == 0:
-            assert np.array_equal(L, L_ref)
+            assert np.array_equal(F, F_ref)
             rhs = -grad[dof_map >= 0][:n_red] if n_red else np.zeros(0)
-            x = banded.solve_factored(L, rhs)
+            x = banded.solve_rows(F, ends, rhs)
             assert np.all(np.isfinite(x))
     assert widest > 20

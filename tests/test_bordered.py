@@ -96,7 +96,7 @@ def _old_direction(ab, g, dof_map, n_red, shift):
 @pytest.mark.parametrize("design", [(55.0, 1.0), (70.0, 0.8), (25.0, 1.0)])
 def test_newton_direction_equals_the_node_by_node_numberings_on_solver_states(design):
     borders = 0
-    for hb, grad, free in solver_states(design, range(0, 25, 4)):
+    for hb, grad, free in solver_states(design, range(1, 25, 3)):
         n = grad.size // 2
         old_map, n_red = step.reduced_indices(n, free)
         ab_old = bordered.restrict(hb, old_map, n_red, 0)[0].T
@@ -106,11 +106,35 @@ def test_newton_direction_equals_the_node_by_node_numberings_on_solver_states(de
         shift = 0.0
         while banded.factor(ab_old, shift)[1] != 0:
             shift = max(10.0 * shift, 1e-10 * np.abs(ab_old[0]).mean())
-        d, used = step.direction(At, B, C, grad, dof_map, 10.0 * shift)
+        d, used, _ = step.direction(At, B, C, grad, dof_map, 10.0 * shift, False)
         assert used == pytest.approx(shift, rel=1e-15)
+        # kept: the search starts at the given shift, not a decade below it
+        kept, used_kept, raised = step.direction(At, B, C, grad, dof_map, shift, True)
+        assert used_kept == shift and not raised
+        np.testing.assert_array_equal(kept, d)
         expected = _old_direction(ab_old, grad, old_map, n_red, shift)
         # equal to round-off: the forward error bound of a backward-stable solve, cond * eps
         cond = np.linalg.cond(_dense_restricted(hb, old_map, n_red) + shift * np.eye(n_red))
         tol = 10.0 * cond * np.finfo(float).eps * np.abs(expected).max()
         np.testing.assert_allclose(d, expected, rtol=0, atol=tol)
     assert borders > 0
+
+
+def test_the_shift_search_reports_whether_it_raised_its_first_trial():
+    """An indefinite restricted Hessian: the first trial (the given shift kept) fails, the
+    search raises it tenfold until the factor succeeds and says so."""
+    rng = np.random.default_rng(3)
+    n = 30
+    free = np.ones(n - 1, dtype=bool)
+    free[0] = False
+    hb = _random_band(rng, n, spd=False)
+    dof_map, n_band, m = bordered.indices(n, free)
+    At, B, C = bordered.restrict(hb, dof_map, n_band, m)
+    grad = rng.standard_normal(2 * n)
+    start = 1e-3
+    assert bordered.factor(At, B, C, start)[5] != 0
+    d, used, raised = step.direction(At, B, C, grad, dof_map, start, True)
+    assert raised and used > start and np.all(np.isfinite(d))
+    assert bordered.factor(At, B, C, used)[5] == 0 != bordered.factor(At, B, C, used / 10.0)[5]
+    _, again, raised_again = step.direction(At, B, C, grad, dof_map, used, True)
+    assert again == used and not raised_again

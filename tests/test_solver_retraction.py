@@ -11,11 +11,12 @@ def _polar_reference(r, z, d):
     out = []
     for i in range(r.size - 1):
         vr, vz = r[i + 1] - r[i], z[i + 1] - z[i]
-        li, p = math.hypot(vr, vz), math.atan2(vz, vr)
+        li, p = math.sqrt(vr * vr + vz * vz), math.atan2(vz, vr)
         if p > 0.0:
             p = -math.pi if p > 0.5 * math.pi else 0.0
         wr, wz = d[2 * i + 2] - d[2 * i], d[2 * i + 3] - d[2 * i + 1]
-        out.append((li, p, (vr * wr + vz * wz) / li, (vr * wz - vz * wr) / li ** 2))
+        il = 1.0 / li
+        out.append((li, p, (vr * wr + vz * wz) * il, (vr * wz - vz * wr) * (il * il)))
     return tuple(np.array(x) for x in zip(*out))
 
 

@@ -5,7 +5,7 @@
 * ``newton``: the certified projected Newton method; ``newton_loop``: its iterations, compiled
   (``fused``: the default energy as one compiled function; ``step``: active set, reduced
   variables and shifted Newton direction; ``retraction``: the polar step; ``banded``: banded
-  Cholesky, restriction, lowest mode; ``bordered``: the Newton system with the long merged
+  L D L^T factor, restriction, lowest mode; ``bordered``: the Newton system with the long merged
   groups' heights as a dense border); ``constraints``: the bound constraints, projection and KKT
   residual.
 * ``continuation``: starting states (the released state, the release continuation).

@@ -12,8 +12,8 @@ a third of the iterations of the benchmark designs). Here every group of more th
 
 with A banded (the r's and the short groups' heights; half-width at most ~7 + 2
 ``MAX_BAND_SPAN``), B dense m x n_band and C dense m x m for m border groups. It is factored by
-block elimination: A = L L^T (``banded.factor_rows``), Y = L^-1 B^T, the Schur complement
-S = C - Y^T Y = Ls Ls^T, and solved with two triangular sweeps each side. The matrix is
+block elimination: A = L D L^T (``banded.factor_rows``, L unit lower), Y = L^-1 B^T, the Schur
+complement S = C - Y D^-1 Y^T = Ls Ls^T, and solved with two triangular sweeps each side. The matrix is
 positive definite iff A and S are, so ``info`` answers the same question as a Cholesky of the
 whole matrix. The direction equals the in-place numbering's to round-off
 (tests/test_bordered.py compares both with dense linear algebra).
@@ -138,10 +138,11 @@ def restrict(hb, dof_map, n_band, m):
 
 @njit(cache=True, fastmath=CONTRACT)
 def factor(At, B, C, shift):
-    """(Lt, ends, Y, Ls, first, info) for [[A, B^T], [B, C]] + shift I: the band factor of A
-    (``banded.factor_rows``: rows and envelope), Y = L^-1 B^T by rows (m, n_band) with each
-    row's first nonzero ``first``, the lower Cholesky factor Ls of the Schur complement and
-    info: 0 on success, else nonzero (not positive definite)."""
+    """(Lt, ends, Y, Ls, first, info) for [[A, B^T], [B, C]] + shift I: the band factor
+    A = L D L^T (``banded.factor_rows``: rows and envelope), Y = L^-1 B^T by rows (m, n_band)
+    with each row's first nonzero ``first``, the lower Cholesky factor Ls of the Schur
+    complement S = C - Y D^-1 Y^T and info: 0 on success, else nonzero (not positive
+    definite)."""
     return factor_with(At, envelope_rows(At), B, C, shift)
 
 
@@ -167,7 +168,7 @@ def factor_with(At, ends, B, C, shift):
         for q in range(k + 1):
             s = 0.0
             for j in range(max(first[k], first[q]), n_band):
-                s += Y[k, j] * Y[q, j]
+                s += Y[k, j] * Y[q, j] * Lt[j, 0]
             Ls[k, q] -= s
     for j in range(m):                      # dense Cholesky of S, lower triangle in place
         d = Ls[j, j]
@@ -192,10 +193,10 @@ def solve(Lt, ends, Y, Ls, first, rhs):
     x = rhs.copy()
     xb = x[:n_band]
     forward_rows(Lt, ends, xb, 0)           # x_b <- L^-1 rhs_b
-    for k in range(m):                      # x_c <- Ls^-1 (rhs_c - Y x_b)
+    for k in range(m):                      # x_c <- Ls^-1 (rhs_c - Y D^-1 x_b)
         s = x[n_band + k]
         for j in range(first[k], n_band):
-            s -= Y[k, j] * xb[j]
+            s -= Y[k, j] * (xb[j] * Lt[j, 0])
         for p in range(k):
             s -= Ls[k, p] * x[n_band + p]
         x[n_band + k] = s / Ls[k, k]
@@ -204,7 +205,7 @@ def solve(Lt, ends, Y, Ls, first, rhs):
         for p in range(k + 1, m):
             s -= Ls[p, k] * x[n_band + p]
         x[n_band + k] = s / Ls[k, k]
-    for k in range(m):                      # x_b <- L^-T (x_b - Y^T x_c)
+    for k in range(m):                      # x_b <- L^-T D^-1 (x_b - Y^T x_c)
         t = x[n_band + k]
         for j in range(first[k], n_band):
             xb[j] -= Y[k, j] * t

@@ -2,7 +2,7 @@
 
 ``iterate`` runs Newton from an admissible state until the certificate is met, the budget is
 spent or the line search fails: derivatives, certificate and active set, restriction,
-shifted bordered-band Cholesky (``step``, ``bordered``), polar retraction (``retraction``) and Armijo backtracking.
+shifted bordered-band factorization (``step``, ``bordered``), polar retraction (``retraction``) and Armijo backtracking.
 It takes the energy as two functions, ``derivatives(r, z, model, grad, hb, want_h)`` (adds
 into grad / hb, returns E) and ``energy(r, z, model)``:
 
@@ -88,6 +88,7 @@ def iterate(r, z, model, tol, max_iter, it, shift, derivatives, energy):
     g_new, hb_new = np.zeros(2 * n), np.zeros((BANDWIDTH + 1, 2 * n))
     u = drops(z)
     E_new, fresh = 0.0, False
+    raised = False              # the last shift search raised its first trial (a failed factor)
     while True:
         if fresh:               # the accepted trial's derivatives (below): already at (r, z)
             grad, g_new, hb, hb_new, E = g_new, grad, hb_new, hb, E_new
@@ -107,7 +108,7 @@ def iterate(r, z, model, tol, max_iter, it, shift, derivatives, energy):
         if it >= max_iter:
             return _leave(r, z, E, residual, it, shift, BUDGET, hb, free)
         it += 1
-        d, shift = direction(At, B, C, grad, dof_map, shift)
+        d, shift, raised = direction(At, B, C, grad, dof_map, shift, raised)
         l, phi, dl, dphi = polar(r, z, d)
         alpha, accepted = 1.0, False
         r_new, z_new = r, z

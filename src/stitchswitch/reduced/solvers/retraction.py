@@ -44,17 +44,18 @@ def polar(r, z, d):
         vr, vz = r[i + 1] - r[i], z[i + 1] - z[i]
         if vz == 0.0 and vr > 0.0:
             # a level segment (a third of them: the held drops), without the library calls:
-            # atan2(+-0, vr) = +-0 and hypot(vr, +-0) = vr exactly
+            # atan2(+-0, vr) = +-0 and sqrt(vr^2 + 0) = vr exactly
             li, p = vr, vz
         else:
-            li = math.hypot(vr, vz)
+            li = math.sqrt(vr * vr + vz * vz)   # no overflow to guard against: |v| ~ 1
             p = math.atan2(vz, vr)         # z' <= 0, so p is in [-pi, 0] up to the sign of 0
             if p > 0.0:
                 p = -math.pi if p > 0.5 * math.pi else 0.0
         wr, wz = d[2 * i + 2] - d[2 * i], d[2 * i + 3] - d[2 * i + 1]
         l[i], phi[i] = li, p
-        dl[i] = (vr * wr + vz * wz) / li
-        dphi[i] = (vr * wz - vz * wr) / li ** 2
+        il = 1.0 / li                      # one division per segment
+        dl[i] = (vr * wr + vz * wz) * il
+        dphi[i] = (vr * wz - vz * wr) * (il * il)
     return l, phi, dl, dphi
 
 

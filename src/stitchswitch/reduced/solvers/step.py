@@ -12,7 +12,8 @@ drops), given the interleaved gradient g (2N,) and the drops u:
   the Newton step's);
 * ``direction``: the Newton direction with the restricted Hessian (bordered band), shifted by
   a multiple of the identity that is increased tenfold until it is positive definite (Nocedal
-  & Wright, Alg. 3.3), so every step descends.
+  & Wright, Alg. 3.3), so every step descends. The search starts a decade below the last
+  shift, or at the last shift when that one had to be raised (fewer failed factorizations).
 """
 from __future__ import annotations
 
@@ -75,13 +76,16 @@ def reduced_indices(n, free_drop):
 
 
 @njit(cache=True)
-def direction(At, B, C, g, dof_map, shift):
-    """(d, shift): the Newton direction in interleaved dofs (0 on fixed dofs) with the
+def direction(At, B, C, g, dof_map, shift, keep):
+    """(d, shift, raised): the Newton direction in interleaved dofs (0 on fixed dofs) with the
     restricted Hessian in bordered form (``bordered``: band rows ``At``, border rows ``B``,
-    border block ``C``, numbered by ``dof_map``) plus ``shift`` I, where ``shift`` is the
-    previous step's shift divided by ten (0 below the floor) and raised tenfold until the
-    Cholesky factorization succeeds. A Hessian no shift can make positive definite (not
-    finite) gives a NaN direction, which the line search rejects."""
+    border block ``C``, numbered by ``dof_map``) plus ``shift`` I, where ``shift`` starts at
+    the previous step's shift divided by ten (0 below the floor), or at the previous shift
+    itself if ``keep`` (the previous search had to raise its first trial: the Hessian needs
+    about that shift still, and the trial a decade lower would fail again), and is raised
+    tenfold until the factorization succeeds; ``raised`` tells whether it had to be. A
+    Hessian no shift can make positive definite (not finite) gives a NaN direction, which the
+    line search rejects."""
     n_band, m = At.shape[0], C.shape[0]
     n_red = n_band + m
     g_red = np.zeros(n_red)
@@ -95,17 +99,19 @@ def direction(At, B, C, g, dof_map, shift):
         mean += abs(C[k, k])
     mean = mean / n_red if n_red > 0 else 0.0
     floor = SHIFT_FLOOR * (mean if mean != 0.0 else 1.0)
-    shift = shift / 10.0 if shift > floor else 0.0
+    if not keep:
+        shift = shift / 10.0 if shift > floor else 0.0
     ends = bordered.envelope_rows(At)          # the same for every shift
     Lt, ends, Y, Ls, first, info = bordered.factor_with(At, ends, B, C, shift)
+    raised = info != 0
     while info != 0:
         shift = max(10.0 * shift, floor)
         if not shift < math.inf:
-            return np.full(g.size, math.nan), shift
+            return np.full(g.size, math.nan), shift, True
         Lt, ends, Y, Ls, first, info = bordered.factor_with(At, ends, B, C, shift)
     x = bordered.solve(Lt, ends, Y, Ls, first, g_red)
     d = np.zeros(g.size)
     for a in range(g.size):
         if dof_map[a] >= 0:
             d[a] = x[dof_map[a]]
-    return d, shift
+    return d, shift, raised
