@@ -123,6 +123,8 @@ def test_model_spec_round_trip_and_bounds():
         ModelSpec(START, "gravity_sag")
     vals = scan_values(ModelSpec(START, "tension_asymmetry"), 3)
     assert vals[0] == (0.0,) and any(v[0] < 0 for v in vals) and any(v[0] > 0 for v in vals)
+    # below the probe (0.01 /mm) too: a weak natural curvature has scanned points near it
+    assert {(0.002,), (0.005,), (-0.002,), (-0.005,)} <= set(vals) and len(vals) == 11
 
 
 def test_evaluator_caches_and_warm_jacobian_matches_cold():
@@ -177,6 +179,11 @@ def test_second_basin_finds_the_other_local_minimum_of_the_scanned_profile():
     assert second_basin([((0.0,), 1.0), ((1.0,), 0.5), ((2.0,), 0.7), ((4.0,), 0.9)]) == []
     signed = [((0.0,), 1.0), ((1.0,), 0.5), ((2.0,), 0.7), ((-1.0,), 0.9), ((-2.0,), 0.6)]
     assert second_basin(signed) == [4]
+    # a minimum below the floor (the scan's points under the probe) is not refined
+    weak = [((0.0,), 1.0), ((0.4,), 0.8), ((1.0,), 0.9), ((2.0,), 0.7), ((4.0,), 0.75),
+            ((8.0,), 0.72), ((12.0,), 0.9)]
+    assert second_basin(weak) == [5, 1]
+    assert second_basin(weak, floor=1.0) == [5]
 
 
 def test_signature_is_zero_to_probe_secant():

@@ -82,7 +82,9 @@ class DiscoveryConfig:
     ``propose``: how many next samples to propose. ``huber_c``: a robust fit (Huber's loss with
     threshold ``huber_c`` robust sigmas, ``discovery.robust``); None: least squares. ``forward``:
     when a named effect leaves a systematic residual, try a second effect (forward selection
-    with the same rule, at alpha / (number of candidates left))."""
+    with the same rule, at alpha / (number of candidates left)). ``branches``: follow each
+    training design's equilibrium along the strength scans and evaluate a bistable design on the
+    branch nearest its measured row (``fit.follow_branches``); False: cold solves only."""
 
     effects: tuple | None = None
     folds: int = 5
@@ -101,6 +103,7 @@ class DiscoveryConfig:
     propose: int = 5
     huber_c: float | None = None
     forward: bool = True
+    branches: bool = True
 
     def __post_init__(self) -> None:
         names = tuple(self.effects) if self.effects is not None else tuple(LIBRARY)
@@ -219,6 +222,15 @@ def _start_fit(base, ev, designs, measured, start, config, executor):
                         free=base.free, check_identifiability=False)
         x0 = base.encode(res.material)
     return fit(base, ev, designs, measured, x0, max_nfev=config.fit_max_nfev)
+
+
+def _refreshed(f, ev, designs, measured):
+    """``f`` with its predictions re-evaluated (after designs gained branch states)."""
+    from stitchswitch.validation.discovery.fit import Fit
+
+    pred = ev.one(f.spec, f.x, designs)
+    return Fit(f.spec, f.x, pred, float(np.mean((pred - measured) ** 2)), f.evaluations,
+               ev.n_uncertified(f.spec, f.x, designs), f.message)
 
 
 def screen_spec(start: Material, nodes) -> ModelSpec:
@@ -362,7 +374,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     m_tr, m_va = measured[tr], measured[va]
     train_rows = [r for r, t in zip(rows, tr) if t]
     n_res = m_tr.size
-    ev = Evaluator(executor)
+    ev = Evaluator(executor, targets=dict(zip(d_tr, m_tr)) if config.branches else None)
     base = ModelSpec(start, None, BASE_FREE)
     screen = screen_spec(start, config.screen_nodes)
     lo, hi = base.bounds()
@@ -408,13 +420,18 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     # 4. the leaders at full resolution; the starting model re-polished from every start an
     # apparently significant leader had, so that both sides of the test are fitted equally well
     step("refining the leading candidates at full resolution")
+    if ev.branches:
+        # designs that gained branch states are now evaluated on the branch nearest their
+        # row, for the starting model too: its fit is re-evaluated so that both sides of
+        # every comparison see the same branches
+        fb = _refreshed(fb, ev, d_tr, m_fit)
     refined_fits = {}
     for name in leaders:
         spec = base.with_effect(name)
         if screen != base:
             f = fit(spec, ev, d_tr, m_fit, screened_fit[name].x, max_nfev=config.polish_max_nfev)
         else:
-            f = screened_fit[name]
+            f = _refreshed(screened_fit[name], ev, d_tr, m_fit)
         refined_fits[name] = f
     def passes(rss0, f):
         rss1 = float(np.sum((f.predictions - m_fit) ** 2))
@@ -590,6 +607,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                        "after_rms_mm": dict(zip(QUANTITIES, split1["systematic_rms_mm"])),
                        "share_explained": explained},
         "proposal": proposal,
+        "branch_designs": [{"d_mm": d, "fill": p, "states": len(states)}
+                           for (d, p), states in sorted(ev.branches.items())],
         "significance_threshold": threshold,
         "n_train": int(tr.sum()), "n_val": int(va.sum()),
         "config": config.as_dict(),
