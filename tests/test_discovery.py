@@ -462,6 +462,30 @@ def test_smooth_split_estimates_the_noise_and_the_systematic_part():
     assert out["systematic_energy_mm2"][1] < 0.05
 
 
+def test_energy_se_is_the_noise_spread_and_not_shrunk_allows_only_noise():
+    from stitchswitch.validation.discovery.residuals import not_shrunk, smooth_split
+
+    d, p = _grid(5)
+    rng = np.random.default_rng(9)
+    runs = [smooth_split(d, p, rng.normal(0, 1.0, (d.size, 1))) for _ in range(400)]
+    energies = np.array([r["systematic_energy_mm2"][0] for r in runs])
+    for r in runs[:5]:
+        assert r["energy_se_mm2"][0] == pytest.approx(
+            r["noise_sigma_mm"][0] ** 2 * np.sqrt(12.0) / d.size)
+    # pure noise (sigma 1): the unclipped |H e|^2 / n spreads by sqrt(12) / n; the clipped
+    # energy estimate by less
+    assert np.std(energies) < np.sqrt(12.0) / d.size
+    assert np.std(energies) > 0.3 * np.sqrt(12.0) / d.size
+    before = {"systematic_energy_mm2": [2.0, 0.4, 1.0], "energy_se_mm2": [0.3, 0.3, 0.3]}
+    within = {"systematic_energy_mm2": [1.0, 0.8, 1.0], "energy_se_mm2": [0.3, 0.3, 0.3]}
+    grew = {"systematic_energy_mm2": [1.0, 1.1, 1.0], "energy_se_mm2": [0.3, 0.3, 0.3]}
+    worse = {"systematic_energy_mm2": [1.9, 0.6, 1.0], "energy_se_mm2": [0.3, 0.3, 0.3]}
+    assert not_shrunk(before, within, [0, 1]) == []        # 0.4 up on one: within 2 se
+    assert not_shrunk(before, grew, [0, 1]) == [1]         # 0.7 up: more than 2 se
+    assert not_shrunk(before, worse, [0, 1]) == [0, 1]     # the claims did not shrink in sum
+    assert not_shrunk(before, worse, [0]) == []
+
+
 def test_winsorize_is_hubers_pseudo_observation_step():
     from stitchswitch.validation.discovery.robust import robust_scale, winsorize
 

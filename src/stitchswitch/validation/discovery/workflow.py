@@ -25,8 +25,10 @@ propose the samples that would decide.
    best-ranked passing one (``lead_candidate``). Other leaders whose held-out
    losses are within the noise of it (``cv.within_noise``) make the verdict
    "indistinguishable" (none is named). A passing effect is named only if it shrinks the
-   systematic part (``residuals.smooth_split``) of every systematic keypoint it claims (those
-   whose unabsorbed signature correlates positively with the residuals).
+   systematic part (``residuals.smooth_split``) of the systematic keypoints it claims (those
+   whose unabsorbed signature correlates positively with the residuals): their summed
+   systematic energy must fall and none may grow by more than its noise
+   (``residuals.not_shrunk``).
 5. **Report** the residual tests before and after (``residuals``; a systematic residual left
    is "an unexplained residual"), the estimated noise floor and the share of the systematic
    residual explained, and the next samples (``proposal``) that best separate the leading
@@ -351,7 +353,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     docstring. ``executor``: a map-like for parallel solves. ``progress(message, stage,
     total)`` is called as each stage starts."""
     from stitchswitch.validation.discovery.proposal import design_grid, model_view, propose
-    from stitchswitch.validation.discovery.residuals import smooth_split
+    from stitchswitch.validation.discovery.residuals import not_shrunk, smooth_split
 
     t0 = time.perf_counter()
     total = stage_count(config)
@@ -494,8 +496,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         per_q = chosen.signature["per_quantity"]
         claims = [q for q in systematic_before if per_q[q] > 0] or systematic_before
         k_of = {q: k for k, q in enumerate(QUANTITIES)}
-        unshrunk = [q for q in claims if split1["systematic_rms_mm"][k_of[q]]
-                    >= split0["systematic_rms_mm"][k_of[q]]]
+        unshrunk = [QUANTITIES[k] for k in not_shrunk(split0, split1, [k_of[q] for q in claims])]
     left = [q for q in QUANTITIES if res_after[q]["systematic"]]
     e0, e1 = sum(split0["systematic_energy_mm2"]), sum(split1["systematic_energy_mm2"])
     explained = (1.0 - e1 / e0) if e0 > 0 else None
