@@ -72,11 +72,15 @@ def test_a_design_takes_the_branch_nearest_its_row_and_only_with_a_target():
     for target, expect in ((popped, popped), (cold, cold)):
         ev = Evaluator(targets={design: target})
         assert np.array_equal(ev.one(spec, x, [design])[0], cold)   # no branch state: cold
-        assert ev.add_branch(design, state)
+        assert ev.add_branch(design, state, "tension_asymmetry")
         assert np.allclose(ev.one(spec, x, [design])[0], expect, atol=1e-6)
+        # another effect's models do not use it; the starting model does (the reference)
+        other = ModelSpec(TRUE, "hoop_bending")
+        assert np.array_equal(ev.one(other, other.encode(TRUE), [design])[0],
+                              Evaluator().one(other, other.encode(TRUE), [design])[0])
     # without a target (a validation row) a branch state is refused and the solve stays cold
     ev = Evaluator()
-    assert not ev.add_branch(design, state)
+    assert not ev.add_branch(design, state, "tension_asymmetry")
     assert np.array_equal(ev.one(spec, x, [design])[0], cold)
     # follow_branches finds that state itself along the scan when the row is the popped one
     ev = Evaluator(targets={design: popped})

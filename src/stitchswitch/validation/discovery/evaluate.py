@@ -17,10 +17,12 @@ reaches jumps with the parameters, and a local fit cannot cross the jump. A desi
 ``fit.follow_branches``); when it does and its measured row is known (``targets``), its value
 at x is the equilibrium nearest to that row among the cold solve and the solves warm-started
 from each branch state (all equilibria of the same model at x): the model's prediction for
-the state the measured patch is in. Every model evaluated on the design gets the same choice
-(the starting model too), the cache key holds the number of branch states, and a design
-without branch states or without a target (validation rows, proposed designs) takes the cold
-solve.
+the state the measured patch is in. A model uses the states found along the scans of its own
+effects; the starting model uses every state (the reference of every test is never the less
+flexible side). The cache key holds the number of states used, and a design without branch
+states or without a target (validation rows, proposed designs) takes the cold solve.
+(Measured: shared by every model, a state found along prestretch_loss's scan let
+fill_exponent's folds reach a branch and tie with the true effect.)
 """
 from __future__ import annotations
 
@@ -98,20 +100,28 @@ class Evaluator:
             self.progress(self.calls)
         return out
 
-    def _pool(self, design) -> tuple:
+    def _pool(self, spec, design) -> tuple:
+        """The branch states ``spec`` evaluates ``design`` with: those found along the scans of
+        its own effects (the candidate and the prior ones); the starting model (no effect)
+        takes them all, so that the reference of every test is never less flexible."""
         d = _design(design)
-        return self.branches.get(d, ()) if d in self.targets else ()
+        if d not in self.targets:
+            return ()
+        mine = (spec.effect,) + tuple(spec.prior)
+        everything = spec.effect is None and not spec.prior
+        return tuple(s for name, s in self.branches.get(d, ()) if everything or name in mine)
 
     def _key(self, spec, x, design):
-        return _raw_key(spec, x, design) + (len(self._pool(design)),)
+        return _raw_key(spec, x, design) + (len(self._pool(spec, design)),)
 
-    def add_branch(self, design, solution) -> bool:
-        """Keep ``solution`` as a branch state of ``design`` (at most ``MAX_BRANCHES``)."""
+    def add_branch(self, design, solution, effect=None) -> bool:
+        """Keep ``solution``, found along a scan of ``effect``, as a branch state of ``design``
+        (at most ``MAX_BRANCHES`` per design)."""
         d = _design(design)
         pool = self.branches.get(d, ())
         if d not in self.targets or len(pool) >= MAX_BRANCHES:
             return False
-        self.branches[d] = pool + (solution,)
+        self.branches[d] = pool + ((effect, solution),)
         return True
 
     def keypoints(self, spec, xs, designs) -> list[np.ndarray]:
@@ -125,7 +135,7 @@ class Evaluator:
                 if rk not in self.raw and rk not in todo:
                     todo[rk] = len(items)
                     items.append((float(design[0]), float(design[1]), material, active, None))
-                for i, state in enumerate(self._pool(design)):
+                for i, state in enumerate(self._pool(spec, design)):
                     bk = rk + (i,)
                     if bk not in self.raw and bk not in todo:
                         todo[bk] = len(items)
@@ -140,7 +150,7 @@ class Evaluator:
                     continue
                 rk = _raw_key(spec, x, design)
                 options = [self.raw[rk]] + [self.raw[rk + (i,)]
-                                            for i in range(len(self._pool(design)))]
+                                            for i in range(len(self._pool(spec, design)))]
                 best = options[0]
                 if len(options) > 1:
                     target = self.targets[_design(design)]

@@ -42,7 +42,7 @@ __all__ = ["Fit", "fit", "jacobian", "scan_values", "scan_effect", "second_basin
 SECOND_BASIN = 0.02
 #: An equilibrium followed along the strength scan is another branch than the evaluator's
 #: value at the same parameters when some keypoint differs by more than this (mm).
-BRANCH_MM = 1.0
+BRANCH_MM = 2.0
 #: ... and it is kept only when it at least halves the design's squared error there: a jump to
 #: the other branch of a bistable design misses its row by several mm.
 BRANCH_SHARE = 0.5
@@ -184,7 +184,8 @@ def follow_branches(spec, ev, designs, xs) -> int:
                     if (e < min(BRANCH_SHARE * e_now, e_now - BRANCH_MM ** 2)
                             and (j not in best or e < best[j][0])):
                         best[j] = (e, states[j])
-    return sum(ev.add_branch(designs[j], state) for j, (_, state) in sorted(best.items()))
+    return sum(ev.add_branch(designs[j], state, spec.effect)
+               for j, (_, state) in sorted(best.items()))
 
 
 def second_basin(table, floor: float = 0.0) -> list[int]:

@@ -608,7 +608,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                        "after_rms_mm": dict(zip(QUANTITIES, split1["systematic_rms_mm"])),
                        "share_explained": explained},
         "proposal": proposal,
-        "branch_designs": [{"d_mm": d, "fill": p, "states": len(states)}
+        "branch_designs": [{"d_mm": d, "fill": p, "found_by": [name for name, _ in states]}
                            for (d, p), states in sorted(ev.branches.items())],
         "significance_threshold": threshold,
         "n_train": int(tr.sum()), "n_val": int(va.sum()),
