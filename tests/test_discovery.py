@@ -476,10 +476,11 @@ def test_energy_se_is_the_noise_spread_and_not_shrunk_allows_only_noise():
     # energy estimate by less
     assert np.std(energies) < np.sqrt(12.0) / d.size
     assert np.std(energies) > 0.3 * np.sqrt(12.0) / d.size
-    before = {"systematic_energy_mm2": [2.0, 0.4, 1.0], "energy_se_mm2": [0.3, 0.3, 0.3]}
-    within = {"systematic_energy_mm2": [1.0, 0.8, 1.0], "energy_se_mm2": [0.3, 0.3, 0.3]}
-    grew = {"systematic_energy_mm2": [1.0, 1.1, 1.0], "energy_se_mm2": [0.3, 0.3, 0.3]}
-    worse = {"systematic_energy_mm2": [1.9, 0.6, 1.0], "energy_se_mm2": [0.3, 0.3, 0.3]}
+    def split(ms):
+        return {"systematic_rms_mm": list(np.sqrt(ms)), "energy_se_mm2": [0.3, 0.3, 0.3]}
+
+    before, within, grew, worse = (split([2.0, 0.4, 1.0]), split([1.0, 0.8, 1.0]),
+                                   split([1.0, 1.1, 1.0]), split([1.9, 0.6, 1.0]))
     assert not_shrunk(before, within, [0, 1]) == []        # 0.4 up on one: within 2 se
     assert not_shrunk(before, grew, [0, 1]) == [1]         # 0.7 up: more than 2 se
     assert not_shrunk(before, worse, [0, 1]) == [0, 1]     # the claims did not shrink in sum

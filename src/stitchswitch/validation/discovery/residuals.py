@@ -22,7 +22,7 @@ that fit, sqrt(|e - H e|^2 / (n - 6)), unbiased for the noise sigma when the sur
 systematic part. ``systematic_energy`` = max(0, |H e|^2 - 6 sigma^2) / n is the mean squared
 systematic residual with the noise the six-term fit absorbs taken out; ``energy_se`` =
 sigma^2 sqrt(12) / n its standard deviation under pure noise (|H e|^2 is sigma^2 chi^2(6)).
-``not_shrunk`` uses it to tell a claimed keypoint whose systematic residual grew from one whose
+``not_shrunk`` uses it to tell a claimed keypoint whose systematic part grew from one whose
 estimate moved within the noise.
 """
 from __future__ import annotations
@@ -104,13 +104,14 @@ CLAIM_SE = 2.0
 def not_shrunk(before: dict, after: dict, columns) -> list[int]:
     """The ``columns`` (indices) of the claimed keypoints whose systematic residual the change
     from ``before`` to ``after`` (two ``smooth_split`` results) did not shrink: all of them when
-    their summed systematic energy did not decrease, else those whose energy grew by more than
-    ``CLAIM_SE`` standard errors (a 0.1 mm move of a smooth part estimated from 25 noisy rows is
-    not a growth)."""
-    e0 = np.asarray(before["systematic_energy_mm2"])
-    e1 = np.asarray(after["systematic_energy_mm2"])
+    their summed mean square systematic part (``systematic_rms_mm`` squared) did not fall, else
+    those whose own grew by more than ``CLAIM_SE`` standard errors of its noise (a 0.1 mm move
+    of a smooth part estimated from 25 noisy rows is not a growth). Every keypoint whose RMS
+    falls passes, so this never blocks what requiring each RMS to fall would pass."""
+    m0 = np.asarray(before["systematic_rms_mm"]) ** 2
+    m1 = np.asarray(after["systematic_rms_mm"]) ** 2
     se = np.asarray(before["energy_se_mm2"])
     cols = list(columns)
-    if cols and np.sum(e1[cols]) >= np.sum(e0[cols]):
+    if cols and np.sum(m1[cols]) >= np.sum(m0[cols]):
         return cols
-    return [k for k in cols if e1[k] - e0[k] > CLAIM_SE * se[k]]
+    return [k for k in cols if m1[k] - m0[k] > CLAIM_SE * se[k]]

@@ -26,8 +26,8 @@ propose the samples that would decide.
    losses are within the noise of it (``cv.within_noise``) make the verdict
    "indistinguishable" (none is named). A passing effect is named only if it shrinks the
    systematic part (``residuals.smooth_split``) of the systematic keypoints it claims (those
-   whose unabsorbed signature correlates positively with the residuals): their summed
-   systematic energy must fall and none may grow by more than its noise
+   whose unabsorbed signature correlates positively with the residuals): their summed mean
+   square systematic part must fall and none may grow by more than its noise
    (``residuals.not_shrunk``).
 5. **Report** the residual tests before and after (``residuals``; a systematic residual left
    is "an unexplained residual"), the estimated noise floor and the share of the systematic
