@@ -123,6 +123,8 @@ def test_model_spec_round_trip_and_bounds():
         ModelSpec(START, "gravity_sag")
     vals = scan_values(ModelSpec(START, "tension_asymmetry"), 3)
     assert vals[0] == (0.0,) and any(v[0] < 0 for v in vals) and any(v[0] > 0 for v in vals)
+    # below the probe (0.01 /mm) too: a weak natural curvature has scanned points near it
+    assert {(0.002,), (0.005,), (-0.002,), (-0.005,)} <= set(vals) and len(vals) == 11
 
 
 def test_evaluator_caches_and_warm_jacobian_matches_cold():
@@ -177,6 +179,11 @@ def test_second_basin_finds_the_other_local_minimum_of_the_scanned_profile():
     assert second_basin([((0.0,), 1.0), ((1.0,), 0.5), ((2.0,), 0.7), ((4.0,), 0.9)]) == []
     signed = [((0.0,), 1.0), ((1.0,), 0.5), ((2.0,), 0.7), ((-1.0,), 0.9), ((-2.0,), 0.6)]
     assert second_basin(signed) == [4]
+    # a minimum below the floor (the scan's points under the probe) is not refined
+    weak = [((0.0,), 1.0), ((0.4,), 0.8), ((1.0,), 0.9), ((2.0,), 0.7), ((4.0,), 0.75),
+            ((8.0,), 0.72), ((12.0,), 0.9)]
+    assert second_basin(weak) == [5, 1]
+    assert second_basin(weak, floor=1.0) == [5]
 
 
 def test_signature_is_zero_to_probe_secant():
@@ -453,6 +460,31 @@ def test_smooth_split_estimates_the_noise_and_the_systematic_part():
     assert out["noise_sigma_mm"][1] == pytest.approx(0.5, rel=0.2)
     assert out["systematic_energy_mm2"][0] == pytest.approx(np.mean(trend ** 2), rel=0.2)
     assert out["systematic_energy_mm2"][1] < 0.05
+
+
+def test_energy_se_is_the_noise_spread_and_not_shrunk_allows_only_noise():
+    from stitchswitch.validation.discovery.residuals import not_shrunk, smooth_split
+
+    d, p = _grid(5)
+    rng = np.random.default_rng(9)
+    runs = [smooth_split(d, p, rng.normal(0, 1.0, (d.size, 1))) for _ in range(400)]
+    energies = np.array([r["systematic_energy_mm2"][0] for r in runs])
+    for r in runs[:5]:
+        assert r["energy_se_mm2"][0] == pytest.approx(
+            r["noise_sigma_mm"][0] ** 2 * np.sqrt(12.0) / d.size)
+    # pure noise (sigma 1): the unclipped |H e|^2 / n spreads by sqrt(12) / n; the clipped
+    # energy estimate by less
+    assert np.std(energies) < np.sqrt(12.0) / d.size
+    assert np.std(energies) > 0.3 * np.sqrt(12.0) / d.size
+    def split(ms):
+        return {"systematic_rms_mm": list(np.sqrt(ms)), "energy_se_mm2": [0.3, 0.3, 0.3]}
+
+    before, within, grew, worse = (split([2.0, 0.4, 1.0]), split([1.0, 0.8, 1.0]),
+                                   split([1.0, 1.1, 1.0]), split([1.9, 0.6, 1.0]))
+    assert not_shrunk(before, within, [0, 1]) == []        # 0.4 up on one: within 2 se
+    assert not_shrunk(before, grew, [0, 1]) == [1]         # 0.7 up: more than 2 se
+    assert not_shrunk(before, worse, [0, 1]) == [0, 1]     # the claims did not shrink in sum
+    assert not_shrunk(before, worse, [0]) == []
 
 
 def test_winsorize_is_hubers_pseudo_observation_step():

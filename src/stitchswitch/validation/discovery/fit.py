@@ -34,11 +34,22 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = ["Fit", "fit", "jacobian", "scan_values", "scan_effect", "second_basin",
-           "linearized_start", "fit_effect", "equal_footing", "SECOND_BASIN"]
+           "linearized_start", "fit_effect", "equal_footing", "follow_branches", "SECOND_BASIN",
+           "BRANCH_MM", "BRANCH_SHARE", "BELOW_PROBE"]
 
 #: A second local minimum of the scanned strength profile is refined when its misfit is within
 #: this fraction of the best start's.
 SECOND_BASIN = 0.02
+#: An equilibrium followed along the strength scan is another branch than the evaluator's
+#: value at the same parameters when some keypoint differs by more than this (mm).
+BRANCH_MM = 2.0
+#: ... and it is kept only when it at least halves the design's squared error there: a jump to
+#: the other branch of a bistable design misses its row by several mm.
+BRANCH_SHARE = 0.5
+#: The strength scan also visits these fractions of the probe value: a weak effect below the
+#: probe (a weak hoop bending, a weak negative natural curvature, where the curled branch
+#: already fits the bistable designs) had no scanned point near it.
+BELOW_PROBE = (0.2, 0.5)
 
 
 @dataclass(frozen=True)
@@ -97,11 +108,13 @@ def fit(spec, ev, designs, measured, x0, *, max_nfev: int = 20) -> Fit:
 
 
 def scan_values(spec, points: int = 5) -> list[tuple]:
-    """Effect values scanned before the fit: the first parameter at zero and at ``points``
-    geometric steps from its probe to its bound (both signs if signed); others at their probe."""
+    """Effect values scanned before the fit: the first parameter at zero, at ``BELOW_PROBE``
+    fractions of its probe and at ``points`` geometric steps from its probe to its bound (both
+    signs if signed); others at their probe."""
     params = spec.effect_parameters
     first = params[0]
-    mags = np.geomspace(first.probe, max(first.upper, -first.lower), points)
+    mags = np.concatenate([first.probe * np.asarray(BELOW_PROBE),
+                           np.geomspace(first.probe, max(first.upper, -first.lower), points)])
     values = [0.0] + [m for m in mags if m <= first.upper]
     if first.signed:
         values += [-m for m in mags if -m >= first.lower]
@@ -118,6 +131,7 @@ def scan_effect(spec, ev, designs, measured, x_base, points: int = 5, J0=None):
     points counts."""
     measured = np.asarray(measured, dtype=float)
     xs = [spec.extend(x_base, v) for v in scan_values(spec, points)]
+    follow_branches(spec, ev, designs, xs)     # the scan is then evaluated on the branches found
     preds = ev.keypoints(spec, xs, designs)
     k = spec.offset
     if J0 is not None:
@@ -134,14 +148,53 @@ def scan_effect(spec, ev, designs, measured, x_base, points: int = 5, J0=None):
     table = [(spec.decode(x)[1][spec.effect], m) for x, m in zip(xs, mse)]
     nonzero = [j for j in range(len(xs)) if np.any(xs[j][k:] != 0)]
     best = min(nonzero, key=lambda j: mse[j])
-    return xs[best], table, [xs[j] for j in second_basin(table)]
+    floor = spec.effect_parameters[0].probe
+    return xs[best], table, [xs[j] for j in second_basin(table, floor)]
 
 
-def second_basin(table) -> list[int]:
+def follow_branches(spec, ev, designs, xs) -> int:
+    """Continue every design's equilibrium along the scan ``xs`` (the candidate's first
+    parameter varies; one path per sign outward from zero, one inward from the bound to zero)
+    and give a design, as a branch state (``Evaluator.add_branch``), the followed equilibrium
+    nearest its target among those that differ from the evaluator's value at the same x by
+    more than ``BRANCH_MM`` (some keypoint) and are nearer the target than that value (squared
+    error over the five keypoints, mm^2: at most ``BRANCH_SHARE`` of it, and ``BRANCH_MM``^2
+    less). Both kinds matter: the
+    curled branch a strong negative curvature leads to, and the popped branch continued from
+    zero where the cold solve at a weak curvature already curls. Returns the number of states
+    added (0 when the evaluator has no targets, i.e. branch following is off)."""
+    rows = [ev.targets.get((float(d[0]), float(d[1]))) for d in designs]
+    if not any(r is not None for r in rows):
+        return 0
+    k = spec.offset
+    zero = [x for x in xs if not np.any(x[k:])][:1]
+    err = lambda kp, j: float(np.sum((kp[j] - rows[j]) ** 2))      # noqa: E731
+    best = {}
+    for sign in (1.0, -1.0):
+        side = sorted((x for x in xs if x[k] * sign > 0), key=lambda x: abs(x[k]))
+        if not side:
+            continue
+        for path in (zero + side, side[::-1] + zero):
+            for x, (kp, states) in zip(path, ev.continued(spec, path, designs)):
+                now = ev.one(spec, x, designs)
+                for j, row in enumerate(rows):
+                    if row is None or np.max(np.abs(kp[j] - now[j])) <= BRANCH_MM:
+                        continue
+                    e, e_now = err(kp, j), err(now, j)
+                    if (e < min(BRANCH_SHARE * e_now, e_now - BRANCH_MM ** 2)
+                            and (j not in best or e < best[j][0])):
+                        best[j] = (e, states[j])
+    return sum(ev.add_branch(designs[j], state, spec.effect)
+               for j, (_, state) in sorted(best.items()))
+
+
+def second_basin(table, floor: float = 0.0) -> list[int]:
     """Indices into ``table`` ([(values, mse)], a scan: each strength once uncorrected, then
     possibly once corrected) of the best point of each local minimum of the misfit profile
     along the first parameter (per sign, from zero outwards), best first, without the global
-    best's basin. Empty when the profile has one minimum."""
+    best's basin and without minima at strengths below ``floor`` in magnitude (the scan's
+    points below the probe reach weak effects; a wiggle of a flat profile there is no basin of
+    a strong one). Empty when the profile has one minimum."""
     best_at = {}
     for j, (v, m) in enumerate(table):
         key = float(v[0])
@@ -159,7 +212,7 @@ def second_basin(table) -> list[int]:
             if prof[i] < prof[i - 1] and prof[i] <= right:
                 minima.append(best_at[v])
     minima.sort(key=lambda j: table[j][1])
-    return minima[1:]
+    return [j for j in minima[1:] if abs(float(table[j][0][0])) >= floor]
 
 
 def linearized_start(spec, x_base, J0, sig, residual) -> np.ndarray:

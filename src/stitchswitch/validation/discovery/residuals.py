@@ -20,13 +20,17 @@ estimate). A quantity is *systematic* when p < alpha / 5 (Bonferroni over the fi
 function of the design explains) and an estimate of the noise: the residual standard error of
 that fit, sqrt(|e - H e|^2 / (n - 6)), unbiased for the noise sigma when the surface holds the
 systematic part. ``systematic_energy`` = max(0, |H e|^2 - 6 sigma^2) / n is the mean squared
-systematic residual with the noise the six-term fit absorbs taken out.
+systematic residual with the noise the six-term fit absorbs taken out; ``energy_se`` =
+sigma^2 sqrt(12) / n its standard deviation under pure noise (|H e|^2 is sigma^2 chi^2(6)).
+``not_shrunk`` uses it to tell a claimed keypoint whose systematic part grew from one whose
+estimate moved within the noise.
 """
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["design_basis", "loo_r2", "systematic_test", "residual_analysis", "smooth_split"]
+__all__ = ["design_basis", "loo_r2", "systematic_test", "residual_analysis", "smooth_split",
+           "not_shrunk", "CLAIM_SE"]
 
 
 def design_basis(d, p) -> np.ndarray:
@@ -85,5 +89,29 @@ def smooth_split(d, p, residuals) -> dict:
     fitted = H @ E
     sigma = np.sqrt(np.sum((E - fitted) ** 2, axis=0) / max(n - rank, 1))
     energy = np.maximum(0.0, np.sum(fitted ** 2, axis=0) - rank * sigma ** 2) / n
+    # |H e|^2 of pure noise is sigma^2 chi^2(rank): its standard deviation over n
+    se = sigma ** 2 * np.sqrt(2.0 * rank) / n
     return {"systematic_rms_mm": np.sqrt(np.mean(fitted ** 2, axis=0)).tolist(),
-            "noise_sigma_mm": sigma.tolist(), "systematic_energy_mm2": energy.tolist()}
+            "noise_sigma_mm": sigma.tolist(), "systematic_energy_mm2": energy.tolist(),
+            "energy_se_mm2": se.tolist()}
+
+
+#: A claimed keypoint's systematic energy may grow by at most this many of its standard errors
+#: under noise (``smooth_split``'s ``energy_se_mm2``) before it counts as not shrunk.
+CLAIM_SE = 2.0
+
+
+def not_shrunk(before: dict, after: dict, columns) -> list[int]:
+    """The ``columns`` (indices) of the claimed keypoints whose systematic residual the change
+    from ``before`` to ``after`` (two ``smooth_split`` results) did not shrink: all of them when
+    their summed mean square systematic part (``systematic_rms_mm`` squared) did not fall, else
+    those whose own grew by more than ``CLAIM_SE`` standard errors of its noise (a 0.1 mm move
+    of a smooth part estimated from 25 noisy rows is not a growth). Every keypoint whose RMS
+    falls passes, so this never blocks what requiring each RMS to fall would pass."""
+    m0 = np.asarray(before["systematic_rms_mm"]) ** 2
+    m1 = np.asarray(after["systematic_rms_mm"]) ** 2
+    se = np.asarray(before["energy_se_mm2"])
+    cols = list(columns)
+    if cols and np.sum(m1[cols]) >= np.sum(m0[cols]):
+        return cols
+    return [k for k in cols if m1[k] - m0[k] > CLAIM_SE * se[k]]

@@ -25,8 +25,10 @@ propose the samples that would decide.
    best-ranked passing one (``lead_candidate``). Other leaders whose held-out
    losses are within the noise of it (``cv.within_noise``) make the verdict
    "indistinguishable" (none is named). A passing effect is named only if it shrinks the
-   systematic part (``residuals.smooth_split``) of every systematic keypoint it claims (those
-   whose unabsorbed signature correlates positively with the residuals).
+   systematic part (``residuals.smooth_split``) of the systematic keypoints it claims (those
+   whose unabsorbed signature correlates positively with the residuals): their summed mean
+   square systematic part must fall and none may grow by more than its noise
+   (``residuals.not_shrunk``).
 5. **Report** the residual tests before and after (``residuals``; a systematic residual left
    is "an unexplained residual"), the estimated noise floor and the share of the systematic
    residual explained, and the next samples (``proposal``) that best separate the leading
@@ -82,7 +84,9 @@ class DiscoveryConfig:
     ``propose``: how many next samples to propose. ``huber_c``: a robust fit (Huber's loss with
     threshold ``huber_c`` robust sigmas, ``discovery.robust``); None: least squares. ``forward``:
     when a named effect leaves a systematic residual, try a second effect (forward selection
-    with the same rule, at alpha / (number of candidates left))."""
+    with the same rule, at alpha / (number of candidates left)). ``branches``: follow each
+    training design's equilibrium along the strength scans and evaluate a bistable design on the
+    branch nearest its measured row (``fit.follow_branches``); False: cold solves only."""
 
     effects: tuple | None = None
     folds: int = 5
@@ -101,6 +105,7 @@ class DiscoveryConfig:
     propose: int = 5
     huber_c: float | None = None
     forward: bool = True
+    branches: bool = True
 
     def __post_init__(self) -> None:
         names = tuple(self.effects) if self.effects is not None else tuple(LIBRARY)
@@ -221,6 +226,15 @@ def _start_fit(base, ev, designs, measured, start, config, executor):
     return fit(base, ev, designs, measured, x0, max_nfev=config.fit_max_nfev)
 
 
+def _refreshed(f, ev, designs, measured):
+    """``f`` with its predictions re-evaluated (after designs gained branch states)."""
+    from stitchswitch.validation.discovery.fit import Fit
+
+    pred = ev.one(f.spec, f.x, designs)
+    return Fit(f.spec, f.x, pred, float(np.mean((pred - measured) ** 2)), f.evaluations,
+               ev.n_uncertified(f.spec, f.x, designs), f.message)
+
+
 def screen_spec(start: Material, nodes) -> ModelSpec:
     """The starting model at the screening resolution (``nodes``; None: ``start``'s own)."""
     from stitchswitch.reduced.calibration.evolution import search_material
@@ -339,7 +353,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     docstring. ``executor``: a map-like for parallel solves. ``progress(message, stage,
     total)`` is called as each stage starts."""
     from stitchswitch.validation.discovery.proposal import design_grid, model_view, propose
-    from stitchswitch.validation.discovery.residuals import smooth_split
+    from stitchswitch.validation.discovery.residuals import not_shrunk, smooth_split
 
     t0 = time.perf_counter()
     total = stage_count(config)
@@ -362,7 +376,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     m_tr, m_va = measured[tr], measured[va]
     train_rows = [r for r, t in zip(rows, tr) if t]
     n_res = m_tr.size
-    ev = Evaluator(executor)
+    ev = Evaluator(executor, targets=dict(zip(d_tr, m_tr)) if config.branches else None)
     base = ModelSpec(start, None, BASE_FREE)
     screen = screen_spec(start, config.screen_nodes)
     lo, hi = base.bounds()
@@ -408,13 +422,18 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     # 4. the leaders at full resolution; the starting model re-polished from every start an
     # apparently significant leader had, so that both sides of the test are fitted equally well
     step("refining the leading candidates at full resolution")
+    if ev.branches:
+        # designs that gained branch states are now evaluated on the branch nearest their
+        # row, for the starting model too: its fit is re-evaluated so that both sides of
+        # every comparison see the same branches
+        fb = _refreshed(fb, ev, d_tr, m_fit)
     refined_fits = {}
     for name in leaders:
         spec = base.with_effect(name)
         if screen != base:
             f = fit(spec, ev, d_tr, m_fit, screened_fit[name].x, max_nfev=config.polish_max_nfev)
         else:
-            f = screened_fit[name]
+            f = _refreshed(screened_fit[name], ev, d_tr, m_fit)
         refined_fits[name] = f
     def passes(rss0, f):
         rss1 = float(np.sum((f.predictions - m_fit) ** 2))
@@ -477,8 +496,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         per_q = chosen.signature["per_quantity"]
         claims = [q for q in systematic_before if per_q[q] > 0] or systematic_before
         k_of = {q: k for k, q in enumerate(QUANTITIES)}
-        unshrunk = [q for q in claims if split1["systematic_rms_mm"][k_of[q]]
-                    >= split0["systematic_rms_mm"][k_of[q]]]
+        unshrunk = [QUANTITIES[k] for k in not_shrunk(split0, split1, [k_of[q] for q in claims])]
     left = [q for q in QUANTITIES if res_after[q]["systematic"]]
     e0, e1 = sum(split0["systematic_energy_mm2"]), sum(split1["systematic_energy_mm2"])
     explained = (1.0 - e1 / e0) if e0 > 0 else None
@@ -590,6 +608,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                        "after_rms_mm": dict(zip(QUANTITIES, split1["systematic_rms_mm"])),
                        "share_explained": explained},
         "proposal": proposal,
+        "branch_designs": [{"d_mm": d, "fill": p, "found_by": [name for name, _ in states]}
+                           for (d, p), states in sorted(ev.branches.items())],
         "significance_threshold": threshold,
         "n_train": int(tr.sum()), "n_val": int(va.sum()),
         "config": config.as_dict(),
