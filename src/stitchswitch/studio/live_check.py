@@ -25,6 +25,8 @@ PAIRWISE = ("spacing",)
 
 def _name(rule) -> str:
     return rule.__name__.rsplit(".", 1)[-1]
+
+
 #: the per-patch verdict's entry for the small-pieces warnings (not a rule's name)
 SMALL = "small pieces"
 #: per-patch verdicts kept between runs (those of the last run are always kept)
@@ -100,7 +102,7 @@ def rows(violations) -> list[dict]:
 
 def small_rows(small) -> list[str]:
     """The panel's lines for the small-pieces warnings, worded as ``stitchswitch check``."""
-    return [f"warning: {w.message}" for w in small]
+    return [w.line for w in small]
 
 
 def patch_status(violations) -> dict:

@@ -64,7 +64,7 @@ def check(design, as_json, blank_margin_mm, **limits):
         if found:
             click.echo(_table(found))
         for w in small:
-            click.echo(f"warning: {w.message}")
+            click.echo(w.line)
         click.echo(f"{len(d.patches)} patch(es) on {len(d.pieces)} piece(s): "
                    + ("no violation" if not found else
                       f"{errors} error(s), {len(found) - errors} warning(s)")

@@ -29,6 +29,11 @@ class SmallPieces:
     def message(self) -> str:
         return f"patch {self.patch}: {small_pieces_text(self.count)}"
 
+    @property
+    def line(self) -> str:
+        """The warning as ``stitchswitch check`` prints it (and the studio's panel shows it)."""
+        return f"warning: {self.message}"
+
     def as_dict(self) -> dict:
         return {"patch": self.patch, "piece": self.piece, "count": self.count,
                 "area_mm2": self.area_mm2, "message": self.message}

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Fit", "fit", "jacobian", "scan_values", "scan_effect", "second_basin",
+__all__ = ["Fit", "fit", "evaluated", "jacobian", "scan_values", "scan_effect", "second_basin",
            "linearized_start", "fit_effect", "equal_footing", "follow_branches", "SECOND_BASIN",
            "BRANCH_MM", "BRANCH_SHARE", "BELOW_PROBE"]
 
@@ -105,6 +105,14 @@ def fit(spec, ev, designs, measured, x0, *, max_nfev: int = 20) -> Fit:
         x, pred, mse = x0, p0, float(np.mean((p0 - measured) ** 2))
     return Fit(spec, x, pred, mse, int(res.nfev), ev.n_uncertified(spec, x, designs),
                str(res.message))
+
+
+def evaluated(spec, ev, designs, measured, x, evaluations: int, message: str) -> Fit:
+    """The ``Fit`` of ``spec`` at ``x`` as the evaluator predicts it now (a design that has
+    gained branch states since is evaluated on them)."""
+    pred = ev.one(spec, x, designs)
+    return Fit(spec, x, pred, float(np.mean((pred - measured) ** 2)), evaluations,
+               ev.n_uncertified(spec, x, designs), message)
 
 
 def scan_values(spec, points: int = 5) -> list[tuple]:
@@ -251,9 +259,8 @@ def fit_effect(spec, ev, designs, measured, base_fit, J0, sig, *, max_nfev: int 
     f = fits[start]
     if f.mse_mm2 > base_fit.mse_mm2:
         x0 = spec.extend(base_fit.x, (0.0,) * len(spec.effect_parameters))
-        pred = ev.one(spec, x0, designs)
-        f = Fit(spec, x0, pred, float(np.mean((pred - measured) ** 2)), f.evaluations,
-                ev.n_uncertified(spec, x0, designs), "no improvement over the starting model")
+        f = evaluated(spec, ev, designs, measured, x0, f.evaluations,
+                      "no improvement over the starting model")
         start = "zero"
     return f, {"scan": table, "start": start}
 

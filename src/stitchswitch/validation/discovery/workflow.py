@@ -228,11 +228,9 @@ def _start_fit(base, ev, designs, measured, start, config, executor):
 
 def _refreshed(f, ev, designs, measured):
     """``f`` with its predictions re-evaluated (after designs gained branch states)."""
-    from stitchswitch.validation.discovery.fit import Fit
+    from stitchswitch.validation.discovery.fit import evaluated
 
-    pred = ev.one(f.spec, f.x, designs)
-    return Fit(f.spec, f.x, pred, float(np.mean((pred - measured) ** 2)), f.evaluations,
-               ev.n_uncertified(f.spec, f.x, designs), f.message)
+    return evaluated(f.spec, ev, designs, measured, f.x, f.evaluations, f.message)
 
 
 def screen_spec(start: Material, nodes) -> ModelSpec:
