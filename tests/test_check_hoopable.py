@@ -74,3 +74,63 @@ def test_model_range_is_a_rule():
     found = [v for v in check_design(d) if v.rule == "model-range"]
     assert len(found) == 1 and found[0].value == 8.0 and found[0].limit == 10.0
     assert "--diameter" in found[0].hint
+
+
+# ---- can_hoop's shortcuts give the full grid's answer ------------------------------------------
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+def _full_grid(i, x, y, r, hoops, region) -> list:
+    """Per hoop and orientation: the allowed mask of every grid point, no shortcut."""
+    from stitchswitch.layout.check.rules import hoopable as rule
+    return [rule.allowed(region, cx.ravel(), cy.ravel(), *hoop.outer_mm(o))
+            for _k, hoop, o, _w, _h, cx, cy in rule._centres(i, x, y, r, hoops, rule.STEP_MM)]
+
+
+#: an L-shaped piece with a notch: a region where a disc may fit while its hoops do not
+L_PIECE = ((0, 0), (420, 0), (420, 160), (200, 160), (200, 380), (0, 380))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(-30.0, 450.0), st.floats(-30.0, 410.0), st.floats(5.0, 100.0),
+       st.sampled_from([0.0, 15.0]))
+def test_can_hoop_equals_the_full_grid_search(cx, cy, diameter, blank):
+    """The core test and the coarse-first search change neither the verdict nor the grid's
+    masks (which fabrication's placements and the frame-conflict rule use)."""
+    import numpy as np
+
+    from stitchswitch.layout.check.rules import hoopable as rule
+    from stitchswitch.layout.check.rules.hoop import design_hoops
+    d = Design(1, [PieceSpec("panel", "", "test", L_PIECE)],
+               [PatchSpec("p1", "panel", (cx, cy), diameter, 1.0)],
+               machine=MachineSpec("janome-550e", None))
+    hoops = design_hoops(d)
+    region = rule.hoop_region(np.asarray(L_PIECE, dtype=float), blank)
+    x, y, r = np.array([cx]), np.array([cy]), np.array([diameter / 2])
+    full = _full_grid(0, x, y, r, hoops, region)
+    assert rule.can_hoop(0, x, y, r, hoops, region) == any(ok.any() for ok in full)
+    got = [ok for *_, ok in rule.grid(0, x, y, r, hoops, region, rule.STEP_MM)]
+    assert len(got) == len(full) and all(np.array_equal(a, b) for a, b in zip(got, full))
+
+
+def test_the_core_lies_inside_every_outer_rectangle():
+    """``core`` is inside each outer rectangle of the grid, the extreme corners included."""
+    import numpy as np
+    import shapely
+
+    from stitchswitch.layout.check.rules import hoopable as rule
+    from stitchswitch.layout.check.rules.hoop import design_hoops
+    d = Design(1, [PieceSpec("panel", "", "test", PANEL)],
+               [PatchSpec("p1", "panel", (150.0, 100.0), 40.0, 1.0)],
+               machine=MachineSpec("janome-550e", None))
+    x, y, r = np.array([150.0]), np.array([100.0]), np.array([20.0])
+    seen = 0
+    for _k, hoop, o, w, h, cx, cy in rule._centres(0, x, y, r, design_hoops(d), rule.STEP_MM):
+        ow, oh = hoop.outer_mm(o)
+        c = rule.core(150.0, 100.0, 20.0, w, h, ow, oh)
+        boxes = shapely.box(cx - ow / 2, cy - oh / 2, cx + ow / 2, cy + oh / 2).ravel()
+        assert shapely.contains(boxes, c).all()
+        seen += 1
+    assert seen >= 4

@@ -85,25 +85,67 @@ def allowed(region, cx, cy, ow, oh) -> np.ndarray:
     return np.asarray(shapely.contains(region, boxes), dtype=bool)
 
 
-def grid(i, x, y, r, hoops, region, step_mm):
-    """Per hoop and orientation that can hold disc i: (k, o, w, h, cx, cy, allowed mask) over
-    the 2 mm grid of field centres holding it."""
+def _centres(i, x, y, r, hoops, step_mm):
+    """Per hoop and orientation that can hold disc i: (k, hoop, o, w, h, cx, cy), the field
+    centres holding it on a ``step_mm`` grid as 2D arrays (rows along y)."""
     for k, hoop in enumerate(hoops):
         for o in hoop.orientations:
             w, h = hoop.usable_mm(o)
-            ow, oh = hoop.outer_mm(o)
             if 2 * r[i] > min(w, h) + TOL_MM:
                 continue
             sx, sy = w / 2 - r[i], h / 2 - r[i]
             gx = np.linspace(x[i] - sx, x[i] + sx, max(2, int(np.ceil(2 * sx / step_mm)) + 1))
             gy = np.linspace(y[i] - sy, y[i] + sy, max(2, int(np.ceil(2 * sy / step_mm)) + 1))
-            cx, cy = (a.ravel() for a in np.meshgrid(gx, gy))
-            yield k, hoop, o, w, h, cx, cy, allowed(region, cx, cy, ow, oh)
+            cx, cy = np.meshgrid(gx, gy)
+            yield k, hoop, o, w, h, cx, cy
+
+
+def grid(i, x, y, r, hoops, region, step_mm):
+    """Per hoop and orientation that can hold disc i: (k, o, w, h, cx, cy, allowed mask) over
+    the 2 mm grid of field centres holding it (all False, unsearched, where ``core`` is off
+    the fabric)."""
+    for k, hoop, o, w, h, cx, cy in _centres(i, x, y, r, hoops, step_mm):
+        cx, cy = cx.ravel(), cy.ravel()
+        ow, oh = hoop.outer_mm(o)
+        on = _core_on(region, i, x, y, r, w, h, ow, oh)
+        yield k, hoop, o, w, h, cx, cy, (allowed(region, cx, cy, ow, oh) if on
+                                         else np.zeros(len(cx), dtype=bool))
+
+
+def _core_on(region, i, x, y, r, w, h, ow, oh) -> bool:
+    return bool(shapely.contains(region, core(float(x[i]), float(y[i]), float(r[i]),
+                                              w, h, ow, oh)))
+
+
+#: every how many grid points ``can_hoop`` tries first (a subset's allowed point is the grid's)
+COARSE = 4
+#: how much (mm) ``core`` is shrunk, so round-off never makes it larger than a rectangle
+SHRINK_MM = 1e-6
+
+
+def core(x: float, y: float, r: float, w: float, h: float, ow: float, oh: float):
+    """The rectangle every outer rectangle ow x oh of ``grid`` for a disc (x, y, r) and a usable
+    field w x h contains (minus ``SHRINK_MM``): the field centres span x +- (w/2 - r), so the
+    rectangles all cover x +- (ow/2 - w/2 + r), likewise in y. Where it is not on the fabric,
+    no outer rectangle is."""
+    hx, hy = ow / 2 - w / 2 + r - SHRINK_MM, oh / 2 - h / 2 + r - SHRINK_MM
+    return shapely.box(x - hx, y - hy, x + hx, y + hy)
 
 
 def can_hoop(i, x, y, r, hoops, region, step_mm: float = STEP_MM) -> bool:
-    """Whether ``best_placement`` finds a placement (the same grid; stops at the first)."""
-    return any(ok.any() for *_, ok in grid(i, x, y, r, hoops, region, step_mm))
+    """Whether ``best_placement`` finds a placement: the same grid, stopping at the first hoop
+    with an allowed point. Per hoop and orientation, a ``core`` off the fabric skips the grid,
+    and every ``COARSE``-th point in both directions is tried before the rest; neither changes
+    the answer (a subset's point is the grid's; ``core``)."""
+    for _k, hoop, o, w, h, cx, cy in _centres(i, x, y, r, hoops, step_mm):
+        ow, oh = hoop.outer_mm(o)
+        if not _core_on(region, i, x, y, r, w, h, ow, oh):
+            continue
+        coarse = cx[::COARSE, ::COARSE].ravel(), cy[::COARSE, ::COARSE].ravel()
+        if allowed(region, *coarse, ow, oh).any() or allowed(
+                region, cx.ravel(), cy.ravel(), ow, oh).any():
+            return True
+    return False
 
 
 def best_placement(i, x, y, r, hoops, region, step_mm: float = STEP_MM):
