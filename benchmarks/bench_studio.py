@@ -31,9 +31,9 @@ them too (a lighter step than a user's).
   happens after vtk.js's scene-loaded event); ``kB received`` and ``renders``: the websocket
   bytes the page received (DevTools) and its WebGL renders (clears of the canvas) per step.
 
-* ``frame floor``: the least a step's drawn frame can cost here: the page draws the view's
+* ``frame_floor``: the least a step's drawn frame can cost here: the page draws the view's
   unchanged scene again (no server, no new arrays: one vtk.js render) until the frame with it
-  has been produced, timed in the page; ``next frame without a render``: the same wait with no
+  has been produced, timed in the page; ``next frame, no render``: the same wait with no
   render (the page's own compositing).
 
 Each step starts after ``SETTLE_S`` (the previous frame is done and the view's deferred full
