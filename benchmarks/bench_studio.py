@@ -31,6 +31,11 @@ them too (a lighter step than a user's).
   happens after vtk.js's scene-loaded event); ``kB received`` and ``renders``: the websocket
   bytes the page received (DevTools) and its WebGL renders (clears of the canvas) per step.
 
+* ``frame_floor``: the least a step's drawn frame can cost here: the page draws the view's
+  unchanged scene again (no server, no new arrays: one vtk.js render) until the frame with it
+  has been produced, timed in the page; ``next frame, no render``: the same wait with no
+  render (the page's own compositing).
+
 Each step starts after ``SETTLE_S`` (the previous frame is done and the view's deferred full
 state, ``studio.view_channel``, has gone out). The 3D view counts as loaded when its
 ``afterSceneLoaded`` event (vtk.js has synchronized the
@@ -62,6 +67,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tests"))
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "src"))
 
 from bench_preview import design_40  # noqa: E402
+from stitchswitch.studio.app import VIEW_REF  # noqa: E402
 from studio_driver import browser, studio_server, to_px  # noqa: E402
 
 #: the pause before each step, so that the view's deferred full state (``view_channel``) and
@@ -81,6 +87,25 @@ COUNT_RENDERS = """(() => {
 #: resolves after the next frame has been produced (a frame started after this call, then
 #: the one after it: the WebGL drawing done before the call is on the screen)
 NEXT_FRAME = "new Promise(r => requestAnimationFrame(() => requestAnimationFrame(() => r())))"
+#: the floor of a step's frame, timed in the page (ms): the view's unchanged scene drawn again
+#: (``setCamera`` with its own camera: one vtk.js render, no new arrays) until the frame with
+#: it has been produced (as ``NEXT_FRAME``), and the same wait without a render; null when no
+#: render happened (nothing to time)
+FRAME_FLOOR = """async () => {
+  const view = trame.refs.%s;
+  const frame = () => new Promise(r => requestAnimationFrame(() => requestAnimationFrame(() => r())));
+  let t = performance.now();
+  await frame();
+  const idle = performance.now() - t;
+  await new Promise(r => setTimeout(r, 300));
+  const before = window.studioRenders || 0;
+  t = performance.now();
+  view.setCamera(view.getCamera());
+  while ((window.studioRenders || 0) === before && performance.now() - t < 2000)
+    await new Promise(r => setTimeout(r, 0));
+  await frame();
+  return [(window.studioRenders || 0) > before ? performance.now() - t : null, idle];
+}"""
 
 
 def _stamp(page, sel: str) -> int:
@@ -88,7 +113,9 @@ def _stamp(page, sel: str) -> int:
 
 
 def _wait_stamp(page, sel: str, above: int) -> None:
-    page.wait_for_function(f"Number(document.querySelector('{sel}').innerText) > {above}",
+    # textContent, not innerText: the poll runs every frame inside the step measured, and
+    # innerText makes the page recalculate its style (1-2 ms of main-thread time a frame)
+    page.wait_for_function(f"Number(document.querySelector('{sel}').textContent) > {above}",
                            polling="raf", timeout=30000)
 
 
@@ -105,7 +132,7 @@ def _wait_scene(page, above: int, loads: int) -> None:
     scene stamp follows the view's data on the websocket), and the view has synchronized since
     ``loads`` and is not synchronizing any more (vtk.js's afterSceneLoaded: arrays fetched)."""
     page.wait_for_function(
-        f"Number(document.querySelector('#scene-stamp').innerText) > {above} && "
+        f"Number(document.querySelector('#scene-stamp').textContent) > {above} && "
         f"(window.studioSceneLoads || 0) > {loads} && !window.studioSceneBusy",
         polling="raf", timeout=30000)
 
@@ -190,6 +217,13 @@ def measure(runs: int, alternate: bool = False) -> dict:
                     kbytes.append((received.bytes - r0) / 1000.0)
                     renders.append(_renders(page) - n0)
                     server.append(json.loads(page.locator("#timings").inner_text()))
+                floor, floor_idle = [], []
+                for _ in range(runs):
+                    time.sleep(SETTLE_S)
+                    render_ms, idle_ms = page.evaluate(FRAME_FLOOR % VIEW_REF)
+                    if render_ms is not None:
+                        floor.append(render_ms / 1000.0)
+                    floor_idle.append(idle_ms / 1000.0)
                 move, move_3d = [], []
                 x, y = p.centre_mm
                 for k in range(runs):
@@ -220,6 +254,8 @@ def measure(runs: int, alternate: bool = False) -> dict:
             "slider_check": check, "slider": slider, "slider_drawn": drawn,
             "  browser task (slider)": slider_task, "  kB received (slider)": kbytes,
             "  renders (slider)": renders,
+            "frame_floor": floor or [float("nan")],
+            "  next frame, no render": floor_idle,
             **phases, "move": move, "move_3d": move_3d, "  browser task (move)": move_task,
             **{k + " (move)": v for k, v in move_phases.items()}}
 

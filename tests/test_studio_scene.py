@@ -167,7 +167,10 @@ def test_view_actors_follow_the_scene_and_show_the_check():
         assert [p.id for p in content] == [p.id for p in s.design.patches
                                            if group_of(p.id) == group_of("p5")]
         z = np.concatenate([p.surface.points[:, 2] for p in content])
-        assert np.array_equal(mesh.point_data["height (mm)"], z)
+        assert np.array_equal(mesh.point_data["height (mm)"], z.astype(np.float32))
+        # the view's arrays are float32, what WebGL draws with (half the bytes to send)
+        assert mesh.points.dtype == mesh.point_data["height (mm)"].dtype == np.float32
+        assert sync.actors["lines:patch:ok"][2].points.dtype == np.float32
         assert scene3d.scene.patches[5] in content                  # the rebuilt surface is shown
         assert tuple(actor.mapper.scalar_range) == scene3d.clim
         s.move_patch("p1", (10.0, 70.0))                         # over the edge: an error

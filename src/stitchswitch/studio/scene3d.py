@@ -33,6 +33,10 @@ VIEW_RING_STEP = 6
 #: trame-vtk serializes every actor on every update (about 1 ms of CPU each), so one actor per
 #: patch costs more than resending a few patches' arrays with the edited one
 SURFACE_GROUPS = 8
+#: the view's points and heights are sent as float32, what WebGL draws with: float64 arrays
+#: doubled the bytes trame-vtk hashes and sends and vtk.js decodes, for precision the view
+#: drops anyway (vtk.js converts them to float32 for the GPU)
+VIEW_DTYPE = np.float32
 LINE_STYLE = {"piece": ("black", 2.0), "patch": ("#404040", 1.0)}
 FLAGGED_WIDTH = 4.0
 
@@ -110,10 +114,17 @@ def _surface_mesh(pv, parts):
     if not meshes:
         return pv.PolyData()
     offsets = np.cumsum([0] + [len(m[0]) for m in meshes[:-1]])
-    points = np.vstack([m[0] for m in meshes])
+    points = np.vstack([m[0] for m in meshes]).astype(VIEW_DTYPE)
     tris = np.vstack([m[1] + o for m, o in zip(meshes, offsets)])
     mesh = pv.PolyData.from_regular_faces(points, tris)
     mesh.point_data[HEIGHT] = points[:, 2].copy()
+    return mesh
+
+
+def _line_mesh(pv, lines):
+    mesh = polylines(pv, lines)
+    if mesh.n_points:
+        mesh.points = mesh.points.astype(VIEW_DTYPE)
     return mesh
 
 
@@ -150,7 +161,7 @@ class PlotterSync:
             if entry is not None and _same(entry[0], content):
                 counts["kept"] += 1
             else:
-                mesh = _surface_mesh(pv, content) if kind == "surface" else polylines(pv, list(content))
+                mesh = _surface_mesh(pv, content) if kind == "surface" else _line_mesh(pv, list(content))
                 if entry is None:
                     if kind == "surface":
                         actor = pl.add_mesh(mesh, scalars=HEIGHT if mesh.n_points else None,
