@@ -81,11 +81,11 @@ def test_an_indefinite_wide_band_fails_where_the_full_elimination_does():
     assert banded.factor(ab, 0.0)[1] == _full_band_factor(np.ascontiguousarray(ab.T), 0.0)[1] > 0
 
 
-@pytest.mark.parametrize("design", [(40.0, 1.0), (70.0, 0.8)])
+@pytest.mark.parametrize("design", [(40.0, 1.0), (100.0, 1.0)])
 def test_factor_and_solve_equal_the_full_band_ones_on_solver_states(design):
     """Real restricted Hessians along a solve, including iterations with flat stretches."""
     widest = 0
-    for hb, grad, free in solver_states(design, range(0, 16, 3)):
+    for hb, grad, free in solver_states(design, range(0, 20)):
         dof_map, n_red = step.reduced_indices(grad.size // 2, free)
         ab = bordered.restrict(hb, dof_map, n_red, 0)[0].T
         widest = max(widest, ab.shape[0] - 1)

@@ -2,14 +2,14 @@
 
 By default (``warm_start=True``) each row (one diameter) is solved along increasing fill, every
 design started from the previous design's certified equilibrium (``solve(..., warm_start=)``;
-a cold solve if there is none). Where two popped branches coexist (the dome and the overhanging
-neck near the overhang onset), the sweep stays on the dome until it ends, while the direct
-(cold) solve may already land on the neck a few designs earlier; so next to every jump of the
-sweep the designs are solved cold as well and take the direct solve's equilibrium where it is
-on the other branch (``_as_direct``). The map then predicts what ``solve``, ``simulate`` and
-inverse design's confirmation do (docs/design-map.md). With ``warm_start=False`` every point is
-``solve(Patch(d, p), material)`` exactly, as a direct call makes it. Neighbours on the grid are
-also used by ``map_check`` to explain any point that is not smooth (a branch change or the
+a cold solve if there is none): the map holds the branch that continuation along increasing
+fill reaches. That is the branch rule where two popped branches coexist (the dome and the
+overhanging neck near the overhang onset): the sweep stays on the dome until the dome ends.
+It is decided by continuation, not by round-off in a cold solve's path: a direct (cold)
+solve agrees with the map except next to the dome's fold, where it may already land on the
+neck, as its path decides (docs/design-map.md). With ``warm_start=False`` every point is
+``solve(Patch(d, p), material)`` exactly, as a direct call makes it. Neighbours on the grid
+are also used by ``map_check`` to explain any point that is not smooth (a branch change or the
 buckling onset), by warm-starting one design from its neighbour's profile.
 """
 from __future__ import annotations
@@ -61,41 +61,10 @@ def _sweep(d, fills, material, warm):
     return out
 
 
-#: How many designs before a jump of the sweep, and after it, are checked against a cold solve.
-JUMP_WINDOW = (3, 1)
-#: A jump: consecutive heights that differ by more than this (mm), or b changing its rule.
-JUMP_H_MM = 1.0
-
-
-def _as_direct(d, fills, material, sols):
-    """Next to every jump of the sweep (a change of branch), the designs the direct (cold)
-    solve puts on the other branch take the direct solve's equilibrium, so that the map predicts
-    what ``solve`` (and ``simulate``, and inverse design's confirmation) does."""
-    from stitchswitch.reduced.solvers.solve import solve
-
-    sols = list(sols)
-    checked = set()
-    before, after = JUMP_WINDOW
-    for j in range(1, len(sols)):
-        a, b = sols[j - 1].keypoints, sols[j].keypoints
-        if abs(b.h_mm - a.h_mm) <= JUMP_H_MM and a.b_rule == b.b_rule:
-            continue
-        for k in range(max(0, j - before), min(len(sols), j + after)):
-            if k in checked:
-                continue
-            checked.add(k)
-            cold = solve(Patch(d, fills[k]), material)
-            if cold.certified and abs(cold.keypoints.h_mm - sols[k].keypoints.h_mm) > JUMP_H_MM / 10:
-                sols[k] = cold
-    return sols
-
-
 def _solve_row(args):
     d, fills, material, warm = args
     rows = {name: [] for name in KEYPOINTS + ("energy", "residual", "converged", "u", "z")}
     sols = _sweep(d, fills, material, warm)
-    if warm:
-        sols = _as_direct(d, fills, material, sols)
     for sol in sols:
         kp = sol.keypoints
         for name in KEYPOINTS:
@@ -113,8 +82,8 @@ def build(material: Material = DEFAULT_MATERIAL, diameters_mm=DEFAULT_DIAMETERS_
           scheduler: str | None = None, warm_start: bool = True) -> DesignMap:
     """Solve every grid design; ``progress(rows_done)`` is called once per diameter (local
     runs). ``scheduler``: a Dask scheduler address to solve the rows on a cluster.
-    ``warm_start``: sweep each row along increasing fill from the previous equilibrium, with the
-    direct solve's branch next to every jump (default); False: every point a cold solve.
+    ``warm_start``: sweep each row along increasing fill from the previous equilibrium (the
+    branch continuation reaches where two coexist; default); False: every point a cold solve.
 
     With ``check`` the smoothness test runs and unsmooth points are explained and flagged
     (``smoothness.classify``)."""
