@@ -20,7 +20,7 @@ from stitchswitch.validation.discovery.synthetic import (
 
 START = search_material(START_MATERIAL, 150)
 TRUE = search_material(TRUE_MATERIAL, 150)
-KAPPA = -0.0075
+KAPPA = -0.015
 PAPER = [(float(d), float(p)) for p in TRAIN_FILL for d in TRAIN_D_MM]
 
 
@@ -48,27 +48,28 @@ def test_the_branch_following_fit_reaches_a_negative_curvature_the_cold_fit_cann
     fb_cold, f_cold, ev_cold = _fit(PAPER, y, targets=False)
     fb, f, ev = _fit(PAPER, y, targets=True)
     assert fb.mse_mm2 == pytest.approx(fb_cold.mse_mm2)     # the starting model is unchanged
-    # cold solves: the fit stays at (numerically) zero strength, no better than the start
-    assert abs(f_cold.parameters["kappa_per_mm"]) < 1e-3
-    assert f_cold.mse_mm2 > 0.9 * fb_cold.mse_mm2
+    # cold solves: the fit stops short of the truth (measured: kappa -0.0049, MSE 0.21 mm^2
+    # from 1.18), where the curled designs' equilibria jump with the parameters
+    assert f_cold.parameters["kappa_per_mm"] > 0.5 * KAPPA
     assert not ev_cold.branches
-    # following the branch: a negative curvature that removes most of the misfit
-    assert f.parameters["kappa_per_mm"] < -1e-3
-    assert f.mse_mm2 < 0.25 * fb.mse_mm2
+    # following the branch: near the true curvature (-0.0115), the misfit nearly all removed
+    # (0.0044 mm^2)
+    assert f.parameters["kappa_per_mm"] < 0.66 * KAPPA
+    assert f.mse_mm2 < 0.05 * fb.mse_mm2 and f.mse_mm2 < 0.1 * f_cold.mse_mm2
     assert ev.branches
 
 
 def test_a_design_takes_the_branch_nearest_its_row_and_only_with_a_target():
-    design = (70.0, 0.6)      # cold at KAPPA it curls (h 0.44 mm), followed it stays popped (7.16)
+    design = (40.0, 0.8)      # cold at -0.01 it curls (h 0.46 mm), followed it stays popped (5.84)
     spec = ModelSpec(TRUE, "tension_asymmetry")
-    xs = [spec.extend(spec.encode(TRUE), (v,)) for v in (0.0, -0.002, -0.005, KAPPA)]
+    xs = [spec.extend(spec.encode(TRUE), (v,)) for v in np.linspace(0.0, -0.01, 6)]
     x = xs[-1]
     probe = Evaluator()
     cold = probe.one(spec, x, [design])[0]
-    # followed outward from zero, the patch stays popped; the cold solve at KAPPA curls
+    # followed outward from zero, the patch stays popped; the cold solve at -0.01 curls
     followed = probe.continued(spec, xs, [design])[-1]
     popped, state = followed[0][0], followed[1][0]
-    assert popped[0] - cold[0] > 5.0
+    assert popped[0] - cold[0] > 4.0
     for target, expect in ((popped, popped), (cold, cold)):
         ev = Evaluator(targets={design: target})
         assert np.array_equal(ev.one(spec, x, [design])[0], cold)   # no branch state: cold
