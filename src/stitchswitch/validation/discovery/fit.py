@@ -13,8 +13,8 @@ backwards). Local, so it needs a good start:
   squares: a one-dimensional scan of the effect's strength with the starting model's fitted
   coefficients (``scan_values``: geometric steps from the probe value to the bound, each sign
   for a signed parameter), each point also corrected by one Gauss-Newton step of the
-  coefficients with the starting model's Jacobian, and at the ``PROFILED`` best strengths from
-  the probe outward a true profile point (the coefficients refitted by least squares with the
+  coefficients with the starting model's Jacobian, and optionally (``profile``) at the best
+  strengths from the probe outward a true profile point (the coefficients refitted by least squares with the
   strength held: far from the start that one-Jacobian correction misjudges the strength the
   data prefer), and the linearized joint step (``linearized_start``: one
   Gauss-Newton step in the coefficients and the strength together, from the starting model's
@@ -39,7 +39,7 @@ import numpy as np
 
 __all__ = ["Fit", "fit", "evaluated", "jacobian", "scan_values", "scan_effect", "second_basin",
            "linearized_start", "fit_effect", "equal_footing", "follow_branches", "SECOND_BASIN",
-           "BRANCH_MM", "BRANCH_SHARE", "BELOW_PROBE"]
+           "BRANCH_MM", "BRANCH_SHARE", "BELOW_PROBE", "PROFILE_NFEV"]
 
 #: A second local minimum of the scanned strength profile is refined when its misfit is within
 #: this fraction of the best start's.
@@ -54,10 +54,11 @@ BRANCH_SHARE = 0.5
 #: probe (a weak hoop bending, a weak negative natural curvature, where the curled branch
 #: already fits the bistable designs) had no scanned point near it.
 BELOW_PROBE = (0.2, 0.5)
-#: The profile: at this many of the best scanned strengths from the probe outward (where the
-#: starting model's Jacobian J0 is a poor guide), the coefficients are refitted by least
-#: squares with the strength held, with at most ``PROFILE_NFEV`` function evaluations.
-PROFILED = 2
+#: The profile (``scan_effect(..., profile=n)``, ``DiscoveryConfig.profile_points``): at the
+#: n best scanned strengths from the probe outward (where the starting model's Jacobian J0 is
+#: a poor guide), the coefficients are refitted by least squares with the strength held, with
+#: at most ``PROFILE_NFEV`` function evaluations. Off (0) by default: measured on the
+#: benchmark, 2 profile points named fill_exponent on null data (a false discovery).
 PROFILE_NFEV = 3
 
 
@@ -157,7 +158,7 @@ def scan_values(spec, points: int = 5) -> list[tuple]:
 
 
 def scan_effect(spec, ev, designs, measured, x_base, points: int = 5, J0=None,
-                profile: int = PROFILED):
+                profile: int = 0):
     """(best x, [(values, mse)]) of the strength scan from the coefficients of ``x_base``.
 
     With the starting model's Jacobian ``J0`` every scanned strength also gets one Gauss-Newton
@@ -280,11 +281,12 @@ def linearized_start(spec, x_base, J0, sig, residual) -> np.ndarray:
 
 
 def fit_effect(spec, ev, designs, measured, base_fit, J0, sig, *, max_nfev: int = 20,
-               scan_points: int = 5) -> tuple[Fit, dict]:
+               scan_points: int = 5, profile: int = 0) -> tuple[Fit, dict]:
     """Fit the starting model plus ``spec``'s effect; see the module docstring. Returns the fit
     and {"scan": [(values, mse)], "start": the start whose refinement won}."""
     measured = np.asarray(measured, dtype=float)
-    x_scan, table, others = scan_effect(spec, ev, designs, measured, base_fit.x, scan_points, J0)
+    x_scan, table, others = scan_effect(spec, ev, designs, measured, base_fit.x, scan_points, J0,
+                                        profile)
     x_lin = linearized_start(spec, base_fit.x, J0, sig, measured - base_fit.predictions)
     starts = {"linearized": x_lin, "scan": x_scan}
     preds = ev.keypoints(spec, [x_lin, x_scan] + others[:1], designs)
