@@ -12,7 +12,11 @@ backwards). Local, so it needs a good start:
 * with an effect (``fit_effect``): two starts, the one with the lower misfit refined by least
   squares: a one-dimensional scan of the effect's strength with the starting model's fitted
   coefficients (``scan_values``: geometric steps from the probe value to the bound, each sign
-  for a signed parameter), and the linearized joint step (``linearized_start``: one
+  for a signed parameter), each point also corrected by one Gauss-Newton step of the
+  coefficients with the starting model's Jacobian, and optionally (``profile``) at the best
+  strengths from the probe outward a true profile point (the coefficients refitted by least squares with the
+  strength held: far from the start that one-Jacobian correction misjudges the strength the
+  data prefer), and the linearized joint step (``linearized_start``: one
   Gauss-Newton step in the coefficients and the strength together, from the starting model's
   Jacobian and the effect's signature). The misfit along the strength can have two basins
   (``boundary_transition`` at 11 mm: minima of the scan near 2 and 8 mm, 0.6 % apart, whose
@@ -35,7 +39,7 @@ import numpy as np
 
 __all__ = ["Fit", "fit", "evaluated", "jacobian", "scan_values", "scan_effect", "second_basin",
            "linearized_start", "fit_effect", "equal_footing", "follow_branches", "SECOND_BASIN",
-           "BRANCH_MM", "BRANCH_SHARE", "BELOW_PROBE"]
+           "BRANCH_MM", "BRANCH_SHARE", "BELOW_PROBE", "PROFILE_NFEV"]
 
 #: A second local minimum of the scanned strength profile is refined when its misfit is within
 #: this fraction of the best start's.
@@ -50,6 +54,12 @@ BRANCH_SHARE = 0.5
 #: probe (a weak hoop bending, a weak negative natural curvature, where the curled branch
 #: already fits the bistable designs) had no scanned point near it.
 BELOW_PROBE = (0.2, 0.5)
+#: The profile (``scan_effect(..., profile=n)``, ``DiscoveryConfig.profile_points``): at the
+#: n best scanned strengths from the probe outward (where the starting model's Jacobian J0 is
+#: a poor guide), the coefficients are refitted by least squares with the strength held, with
+#: at most ``PROFILE_NFEV`` function evaluations. Off (0) by default: measured on the
+#: benchmark, 2 profile points named fill_exponent on null data (a false discovery).
+PROFILE_NFEV = 3
 
 
 @dataclass(frozen=True)
@@ -70,9 +80,10 @@ class Fit:
         return self.spec.describe(self.x)
 
 
-def jacobian(spec, ev, designs, x, lo, hi):
-    """Forward-difference Jacobian (5 n, k) of the keypoints of ``designs`` at ``x``."""
-    steps = spec.steps()
+def jacobian(spec, ev, designs, x, lo, hi, columns: int | None = None):
+    """Forward-difference Jacobian (5 n, k) of the keypoints of ``designs`` at ``x``; with
+    ``columns``, only the derivatives by the first ``columns`` coordinates."""
+    steps = spec.steps()[:columns]
     xs, signed = [np.asarray(x, dtype=float)], []
     for k, h in enumerate(steps):
         xk = xs[0].copy()
@@ -85,18 +96,34 @@ def jacobian(spec, ev, designs, x, lo, hi):
     return np.stack([(preds[k] - centre).ravel() / h for k, h in enumerate(signed)], axis=1)
 
 
-def fit(spec, ev, designs, measured, x0, *, max_nfev: int = 20) -> Fit:
-    """Least squares from ``x0`` (clipped into the bounds) with at most ``max_nfev`` steps."""
+def fit(spec, ev, designs, measured, x0, *, max_nfev: int = 20, free: int | None = None) -> Fit:
+    """Least squares from ``x0`` (clipped into the bounds) with at most ``max_nfev`` steps; with
+    ``free``, only the first ``free`` coordinates move (the rest, the candidate's strength in
+    a profile, stay at ``x0``'s)."""
     from scipy.optimize import least_squares
 
     measured = np.asarray(measured, dtype=float)
     lo, hi = spec.bounds()
     x0 = np.clip(np.asarray(x0, dtype=float), lo, hi)
-    fun = lambda x: (ev.one(spec, x, designs) - measured).ravel()       # noqa: E731
-    jac = lambda x: jacobian(spec, ev, designs, x, lo, hi)            # noqa: E731
-    res = least_squares(fun, x0, jac=jac, bounds=(lo, hi), method="trf", max_nfev=max_nfev,
-                        x_scale=1.0, xtol=1e-5, ftol=1e-6, gtol=1e-8)
-    x = np.asarray(res.x, dtype=float)
+    k = len(x0) if free is None else int(free)
+    whole = lambda y: np.concatenate([y, x0[k:]])                      # noqa: E731
+    calls = [0]
+
+    def fun(y):
+        calls[0] += 1
+        return (ev.one(spec, whole(y), designs) - measured).ravel()
+
+    def jac(y):
+        # once the evaluations are used up, scipy still differentiates at the point it then
+        # stops at (x0 itself when max_nfev is 1), for a gradient test only: no step uses it,
+        # so zeros stand in for the 5 n solves of a finite difference
+        if calls[0] >= max_nfev:
+            return np.zeros((measured.size, k))
+        return jacobian(spec, ev, designs, whole(y), lo, hi, columns=k)
+
+    res = least_squares(fun, x0[:k], jac=jac, bounds=(lo[:k], hi[:k]), method="trf",
+                        max_nfev=max_nfev, x_scale=1.0, xtol=1e-5, ftol=1e-6, gtol=1e-8)
+    x = whole(np.asarray(res.x, dtype=float))
     # the best point evaluated is the result (trf may end on a rejected trial)
     pred = ev.one(spec, x, designs)
     mse = float(np.mean((pred - measured) ** 2))
@@ -130,13 +157,16 @@ def scan_values(spec, points: int = 5) -> list[tuple]:
     return [(v,) + rest for v in values]
 
 
-def scan_effect(spec, ev, designs, measured, x_base, points: int = 5, J0=None):
+def scan_effect(spec, ev, designs, measured, x_base, points: int = 5, J0=None,
+                profile: int = 0):
     """(best x, [(values, mse)]) of the strength scan from the coefficients of ``x_base``.
 
     With the starting model's Jacobian ``J0`` every scanned strength also gets one Gauss-Newton
-    correction of the coefficients (a profile scan: the coefficients partly re-adapt to the
-    strength, which a large effect needs to be recognized at all); the better of the two
-    points counts."""
+    correction of the coefficients (the coefficients partly re-adapt to the strength, which a
+    large effect needs to be recognized at all), and the ``profile`` best strengths at or above
+    the probe (by the better of those two points) a least-squares refit of the coefficients
+    with the strength held (``PROFILE_NFEV`` evaluations): the profile itself where J0, taken
+    at zero strength, is a poor guide. The best point of each strength counts."""
     measured = np.asarray(measured, dtype=float)
     xs = [spec.extend(x_base, v) for v in scan_values(spec, points)]
     follow_branches(spec, ev, designs, xs)     # the scan is then evaluated on the branches found
@@ -153,6 +183,19 @@ def scan_effect(spec, ev, designs, measured, x_base, points: int = 5, J0=None):
         xs = xs + corrected
         preds = preds + ev.keypoints(spec, corrected, designs)
     mse = [float(np.mean((p - measured) ** 2)) for p in preds]
+    if J0 is not None and profile:
+        # the true profile where J0 is poorest: at the best scanned strengths from the probe
+        # outward (x holds the strength in probe units), the coefficients refitted with the
+        # strength held
+        at = {}
+        for j, x in enumerate(xs):
+            v = float(x[k])
+            if abs(v) >= 1.0 - 1e-12 and (v not in at or mse[j] < mse[at[v]]):
+                at[v] = j
+        for j in sorted(at.values(), key=lambda j: (mse[j], abs(float(xs[j][k]))))[:profile]:
+            f = fit(spec, ev, designs, measured, xs[j], max_nfev=PROFILE_NFEV, free=k)
+            xs.append(f.x)
+            mse.append(f.mse_mm2)
     table = [(spec.decode(x)[1][spec.effect], m) for x, m in zip(xs, mse)]
     nonzero = [j for j in range(len(xs)) if np.any(xs[j][k:] != 0)]
     best = min(nonzero, key=lambda j: mse[j])
@@ -238,11 +281,12 @@ def linearized_start(spec, x_base, J0, sig, residual) -> np.ndarray:
 
 
 def fit_effect(spec, ev, designs, measured, base_fit, J0, sig, *, max_nfev: int = 20,
-               scan_points: int = 5) -> tuple[Fit, dict]:
+               scan_points: int = 5, profile: int = 0) -> tuple[Fit, dict]:
     """Fit the starting model plus ``spec``'s effect; see the module docstring. Returns the fit
     and {"scan": [(values, mse)], "start": the start whose refinement won}."""
     measured = np.asarray(measured, dtype=float)
-    x_scan, table, others = scan_effect(spec, ev, designs, measured, base_fit.x, scan_points, J0)
+    x_scan, table, others = scan_effect(spec, ev, designs, measured, base_fit.x, scan_points, J0,
+                                        profile)
     x_lin = linearized_start(spec, base_fit.x, J0, sig, measured - base_fit.predictions)
     starts = {"linearized": x_lin, "scan": x_scan}
     preds = ev.keypoints(spec, [x_lin, x_scan] + others[:1], designs)

@@ -86,7 +86,9 @@ class DiscoveryConfig:
     when a named effect leaves a systematic residual, try a second effect (forward selection
     with the same rule, at alpha / (number of candidates left)). ``branches``: follow each
     training design's equilibrium along the strength scans and evaluate a bistable design on the
-    branch nearest its measured row (``fit.follow_branches``); False: cold solves only."""
+    branch nearest its measured row (``fit.follow_branches``); False: cold solves only.
+    ``profile_points``: scanned strengths whose coefficients are refitted with the strength held
+    (``fit.scan_effect``; 0: the one-step correction only)."""
 
     effects: tuple | None = None
     folds: int = 5
@@ -106,6 +108,7 @@ class DiscoveryConfig:
     huber_c: float | None = None
     forward: bool = True
     branches: bool = True
+    profile_points: int = 0
 
     def __post_init__(self) -> None:
         names = tuple(self.effects) if self.effects is not None else tuple(LIBRARY)
@@ -118,6 +121,8 @@ class DiscoveryConfig:
         object.__setattr__(self, "effects", names)
         if not 0.0 < self.alpha < 1.0:
             raise InvalidInputError(f"alpha: {self.alpha!r} is outside (0, 1)")
+        if int(self.profile_points) < 0:
+            raise InvalidInputError(f"profile_points: {self.profile_points!r} must be >= 0")
         for name in ("folds", "fit_max_nfev", "cv_max_nfev", "scan_points", "permutations",
                      "refine", "polish_max_nfev", "propose", "screen_max_nfev"):
             if int(getattr(self, name)) < (2 if name == "folds" else 0 if name == "propose" else 1):
@@ -309,7 +314,8 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
         spec = base_c.then(name)
         sig = sigs[name]
         f, _ = fit_effect(spec, ev, d_tr, m_fit, first_screen, J, sig,
-                          max_nfev=config.screen_max_nfev, scan_points=config.scan_points + 2)
+                          max_nfev=config.screen_max_nfev, scan_points=config.scan_points + 2,
+                          profile=config.profile_points)
         cv = cross_validate(spec, ev, d_tr, m_fit, f.x, labels, max_nfev=1)
         if best is None or cv.score_mm2 < best[2]:
             best = (name, f, cv.score_mm2)
@@ -407,7 +413,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         why = explain(J0s, sig[tr], m_fit - fs.predictions, QUANTITIES)
         sigs[name] = {"per_unit": sig, "pattern": why.pop("pattern")}
         f, how = fit_effect(spec, ev, d_tr, m_fit, fs, J0s, sig[tr],
-                            max_nfev=config.screen_max_nfev, scan_points=config.scan_points)
+                            max_nfev=config.screen_max_nfev, scan_points=config.scan_points,
+                            profile=config.profile_points)
         step(f"{name}: cross-validation")
         cv = cross_validate(spec, ev, d_tr, m_fit, f.x, labels, max_nfev=1)
         screened[name] = _candidate(name, spec, f, m_fit, cv, cv0s, why, how["start"], rss0s,
