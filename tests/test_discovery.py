@@ -329,11 +329,11 @@ def _data(source, values, seed):
 
 
 @pytest.mark.xfail(strict=True, reason=(
-    "known defect: with the default settings the strength scan corrects the coefficients by the "
-    "starting model's Jacobian only, ranks loss 0.01 best and the fit stops at loss 0.11: "
-    "'indistinguishable' (fill_exponent, prestretch_loss). The true profile "
-    "(profile_points=2, test_the_profile_option_names_the_hidden_effect) names it, but is off "
-    "by default: on the benchmark's null-noise1 data it named fill_exponent (a false discovery)"))
+    "known defect: prestretch_loss is fitted at loss 0.21 (hidden 0.35), ranked first and "
+    "significant, but fill_exponent (not significant) is within the noise of its held-out "
+    "losses: 'indistinguishable' (prestretch_loss, fill_exponent) on these 9 designs; the same "
+    "with the true profile (profile_points=2, fitted 0.22). With the previous cold start the "
+    "default fit stopped at 0.11 and the profile named the effect"))
 def test_hidden_effect_is_named_and_the_gap_shrinks():
     """prestretch_loss hidden at 0.35; the workflow is given three candidates and not told."""
     data = _data("prestretch_loss", (0.35,), 21)
@@ -355,14 +355,29 @@ def test_hidden_effect_is_named_and_the_gap_shrinks():
     assert s["ranking"][0]["signature"]["correlation"] > 0
 
 
-def test_the_profile_option_names_the_hidden_effect():
-    """The same data with the true profile at two scanned strengths (``profile_points``)."""
-    from dataclasses import replace
+def test_the_profile_refits_the_coefficients_at_the_best_scanned_strengths():
+    """``scan_effect(..., profile=2)``: two more points, each at a scanned strength (held) and
+    no worse than the best point the Jacobian correction gave at that strength."""
+    from stitchswitch.validation.discovery.fit import scan_effect
+    from stitchswitch.validation.discovery.synthetic import true_keypoints
 
-    s = discover(_data("prestretch_loss", (0.35,), 21), START,
-                 replace(SMALL, profile_points=2)).summary
-    assert s["missing_effect"] == "prestretch_loss" and s["verdict"] == "named"
-    assert 0.2 < s["effect_parameters"]["loss"] < 0.5
+    designs = [(d, p) for d in TRAIN["train_d"] for p in TRAIN["train_fill"]]
+    y = true_keypoints(designs, "prestretch_loss", (0.35,), material=TRUE)[0]
+    ev = Evaluator()
+    base = ModelSpec(START)
+    spec = base.with_effect("prestretch_loss")
+    x0 = fit(base, ev, designs, y, base.encode(START), max_nfev=25).x     # as the workflow
+    J0 = jacobian(base, ev, designs, x0, *base.bounds())
+    _, plain, _ = scan_effect(spec, ev, designs, y, x0, points=3, J0=J0)
+    _, prof, _ = scan_effect(spec, ev, designs, y, x0, points=3, J0=J0, profile=2)
+    assert prof[:len(plain)] == plain and len(prof) == len(plain) + 2
+    gains = []
+    for values, mse in prof[len(plain):]:
+        same = [m for v, m in plain if v == values]
+        assert same and mse <= min(same) + 1e-12
+        gains.append(min(same) - mse)
+    # measured: at loss 0.187 the refit reaches 0.217 mm^2 where J0's correction gave 1.088
+    assert max(gains) > 0.5
 
 
 def test_null_data_names_no_effect():
