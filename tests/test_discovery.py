@@ -71,6 +71,19 @@ def test_residual_test_false_alarm_rate_is_about_alpha():
     assert 0.35 <= np.mean(pv < 0.5) <= 0.65
 
 
+def test_validation_score_weights_each_keypoint_by_its_noise():
+    from stitchswitch.validation.discovery.cv import validation_score
+
+    measured = np.zeros((4, 5))
+    sigma = np.array([2.0, 1.0, 1.0, 1.0, 0.5])
+    pred = np.zeros((4, 5))
+    pred[:, 0] = 2.0                     # h off by its noise: 1
+    pred[:2, 4] = -1.0                   # z_b off by 2 sigma on half the rows: 1
+    assert validation_score(pred, measured, sigma) == pytest.approx(2.0)
+    assert validation_score(measured, measured, sigma) == 0.0
+    assert np.isnan(validation_score(np.zeros((0, 5)), np.zeros((0, 5)), sigma))
+
+
 def test_f_test_and_sign_flip():
     F, p = f_test(200.0, 100.0, 125, 5, 6)
     assert F == pytest.approx(100.0 / (100.0 / 119)) and p < 1e-10

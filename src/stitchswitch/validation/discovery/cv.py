@@ -23,6 +23,11 @@
 * ``within_noise``: which models' held-out losses are not significantly worse than the best
   one's (that sign-flip test on the paired per-row differences, p >= alpha): the data cannot
   tell them from the best.
+* ``validation_score``: the noise-weighted mean absolute error on the file's validation rows,
+  sum over keypoints of MAE_q / sigma_q (sigma: the estimated noise floor), so that each
+  keypoint counts by how far above its noise it is missed. A named effect must lower it: an
+  effect that fits the training rows but predicts rows it never saw worse is a stand-in, not
+  the missing physics.
 """
 from __future__ import annotations
 
@@ -33,7 +38,7 @@ import numpy as np
 from stitchswitch.validation.discovery.fit import fit
 
 __all__ = ["fold_labels", "CrossValidation", "cross_validate", "f_test", "oracle_power",
-           "sign_flip_test", "within_noise"]
+           "sign_flip_test", "within_noise", "validation_score"]
 
 
 def fold_labels(designs, k: int, seed: int) -> np.ndarray:
@@ -115,3 +120,12 @@ def within_noise(best_loss, others: dict, alpha: float, seed: int = 0) -> list:
     best_loss = np.asarray(best_loss, dtype=float)
     return [name for name, loss in others.items()
             if sign_flip_test(np.asarray(loss, dtype=float) - best_loss, seed=seed) >= alpha]
+
+
+def validation_score(pred, measured, sigma_mm) -> float:
+    """sum_q mean_i |pred - measured|_iq / sigma_q over the validation rows (n, 5); NaN with no
+    rows."""
+    pred, measured = np.asarray(pred, dtype=float), np.asarray(measured, dtype=float)
+    if len(measured) == 0:
+        return float("nan")
+    return float(np.sum(np.mean(np.abs(pred - measured), axis=0) / np.asarray(sigma_mm)))

@@ -28,11 +28,12 @@ propose the samples that would decide.
    systematic part (``residuals.smooth_split``) of the systematic keypoints it claims (those
    whose unabsorbed signature correlates positively with the residuals): their summed mean
    square systematic part must fall and none may grow by more than its noise
-   (``residuals.not_shrunk``).
+   (``residuals.not_shrunk``), and must predict the file's validation rows better than the
+   starting model (``cv.validation_score``, the noise-weighted MAE).
 5. **Report** the residual tests before and after (``residuals``; a systematic residual left
    is "an unexplained residual"), the estimated noise floor and the share of the systematic
    residual explained, and the next samples (``proposal``) that best separate the leading
-   models. The validation rows take no part in fitting, ranking or the decision.
+   models. The validation rows take no part in fitting or ranking; they only veto a name.
 """
 from __future__ import annotations
 
@@ -48,6 +49,7 @@ from stitchswitch.validation.discovery.cv import (
     f_test,
     fold_labels,
     sign_flip_test,
+    validation_score,
     within_noise,
 )
 from stitchswitch.validation.discovery.effects import LIBRARY, get_effect
@@ -506,6 +508,9 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     e0, e1 = sum(split0["systematic_energy_mm2"]), sum(split1["systematic_energy_mm2"])
     explained = (1.0 - e1 / e0) if e0 > 0 else None
     names = [c.effect for c in group]
+    held_out = (validation_score(before[va], m_va, split0["noise_sigma_mm"]),
+                validation_score(after[va], m_va, split0["noise_sigma_mm"]))
+    worse_held_out = bool(va.any()) and held_out[1] > held_out[0]
     if chosen and unshrunk:
         verdict = "none"
         reason = (f"{top.effect} lowers the cross-validated error and its improvement is "
@@ -519,6 +524,14 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                   f"the noise of one another (sign-flip test of the per-row held-out losses, "
                   f"p >= {config.alpha:g}); the data cannot tell them apart (the proposed "
                   "samples below would)")
+    elif chosen and worse_held_out:
+        verdict = "none"
+        reason = (f"{top.effect} lowers the cross-validated error ({top.cv_mse_mm2:.3f} against "
+                  f"{cv0.score_mm2:.3f} mm^2) and its improvement is significant (p = "
+                  f"{top.p_value:.2g} < {threshold:.2g}), but it predicts the validation rows "
+                  f"worse than the starting model (noise-weighted MAE {held_out[0]:.2f} -> "
+                  f"{held_out[1]:.2f}): it fits the training rows as a stand-in, not as the "
+                  "missing physics; no effect is named")
     elif chosen:
         verdict = "named"
         best = ("has the lowest cross-validated error" if top is ranking[0] else
@@ -601,6 +614,9 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         "residuals_before": res_before,
         "residuals_after": res_after,
         "claims": {"keypoints": claims, "not_shrunk": unshrunk},
+        "validation_score": {"before": held_out[0] if va.any() else None,
+                             "after": held_out[1] if va.any() else None,
+                             "how": "sum over keypoints of the validation MAE / noise sigma"},
         "robust": {"huber_c": config.huber_c, "down_weighted": [
             {"sample": train_rows[i].label, "quantity": QUANTITIES[k],
              "weight": float(weights[i, k])}
