@@ -54,7 +54,13 @@ from stitchswitch.validation.discovery.cv import (
 )
 from stitchswitch.validation.discovery.effects import LIBRARY, get_effect
 from stitchswitch.validation.discovery.evaluate import Evaluator
-from stitchswitch.validation.discovery.fit import equal_footing, fit, fit_effect, jacobian
+from stitchswitch.validation.discovery.fit import (
+    equal_footing,
+    evaluated,
+    fit,
+    fit_effect,
+    jacobian,
+)
 from stitchswitch.validation.discovery.residuals import residual_analysis
 from stitchswitch.validation.discovery.robust import winsorize
 from stitchswitch.validation.discovery.signature import explain, signature
@@ -235,8 +241,6 @@ def _start_fit(base, ev, designs, measured, start, config, executor):
 
 def _refreshed(f, ev, designs, measured):
     """``f`` with its predictions re-evaluated (after designs gained branch states)."""
-    from stitchswitch.validation.discovery.fit import evaluated
-
     return evaluated(f.spec, ev, designs, measured, f.x, f.evaluations, f.message)
 
 
@@ -460,9 +464,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         f = refined_fits[name]
         if f.mse_mm2 > base_fit.mse_mm2:      # the effect cannot beat the starting model
             x0 = f.spec.extend(base_fit.x, (0.0,) * len(f.spec.effect_parameters))
-            pred = ev.one(f.spec, x0, d_tr)
-            f = type(f)(f.spec, x0, pred, float(np.mean((pred - m_fit) ** 2)), f.evaluations,
-                        ev.n_uncertified(f.spec, x0, d_tr), "no improvement over the starting model")
+            f = evaluated(f.spec, ev, d_tr, m_fit, x0, f.evaluations,
+                          "no improvement over the starting model")
         # a leader at zero strength is the starting model itself: it cannot pass, and its
         # held-out error is the starting model's (no fold refits run for it)
         cvr = cv0 if _zero(f.spec, f.x) else cross_validate(
