@@ -1,10 +1,16 @@
 """The check's hoopable rule says exactly what fabricate refuses; an uncut blank clears it."""
 import dataclasses
 
+import numpy as np
 import pytest
+import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.check.constraints import check_design
+from stitchswitch.layout.check.rules import hoopable as rule
+from stitchswitch.layout.check.rules.hoop import design_hoops
 from stitchswitch.layout.fabrication.fabricate import FabricateOptions, fabricate
 from stitchswitch.layout.garment.design import Design, MachineSpec, PatchSpec, PieceSpec
 
@@ -78,13 +84,8 @@ def test_model_range_is_a_rule():
 
 # ---- can_hoop's shortcuts give the full grid's answer ------------------------------------------
 
-from hypothesis import given, settings  # noqa: E402
-from hypothesis import strategies as st  # noqa: E402
-
-
 def _full_grid(i, x, y, r, hoops, region) -> list:
     """Per hoop and orientation: the allowed mask of every grid point, no shortcut."""
-    from stitchswitch.layout.check.rules import hoopable as rule
     return [rule.allowed(region, cx.ravel(), cy.ravel(), *hoop.outer_mm(o))
             for _k, hoop, o, _w, _h, cx, cy in rule._centres(i, x, y, r, hoops, rule.STEP_MM)]
 
@@ -99,10 +100,6 @@ L_PIECE = ((0, 0), (420, 0), (420, 160), (200, 160), (200, 380), (0, 380))
 def test_can_hoop_equals_the_full_grid_search(cx, cy, diameter, blank):
     """The core test and the coarse-first search change neither the verdict nor the grid's
     masks (which fabrication's placements and the frame-conflict rule use)."""
-    import numpy as np
-
-    from stitchswitch.layout.check.rules import hoopable as rule
-    from stitchswitch.layout.check.rules.hoop import design_hoops
     d = Design(1, [PieceSpec("panel", "", "test", L_PIECE)],
                [PatchSpec("p1", "panel", (cx, cy), diameter, 1.0)],
                machine=MachineSpec("janome-550e", None))
@@ -117,11 +114,6 @@ def test_can_hoop_equals_the_full_grid_search(cx, cy, diameter, blank):
 
 def test_the_core_lies_inside_every_outer_rectangle():
     """``core`` is inside each outer rectangle of the grid, the extreme corners included."""
-    import numpy as np
-    import shapely
-
-    from stitchswitch.layout.check.rules import hoopable as rule
-    from stitchswitch.layout.check.rules.hoop import design_hoops
     d = Design(1, [PieceSpec("panel", "", "test", PANEL)],
                [PatchSpec("p1", "panel", (150.0, 100.0), 40.0, 1.0)],
                machine=MachineSpec("janome-550e", None))

@@ -23,6 +23,10 @@ from stitchswitch.layout.check.violation import Violation
 RULE = "hoopable"
 TOL_MM = 1e-9
 STEP_MM = 2.0
+#: every how many grid points ``can_hoop`` tries first (a subset's allowed point is the grid's)
+COARSE = 4
+#: how much (mm) ``core`` is shrunk, so round-off never makes it larger than a rectangle
+SHRINK_MM = 1e-6
 
 
 def hoop_region(outline_mm, blank_mm: float = 0.0):
@@ -100,6 +104,20 @@ def _centres(i, x, y, r, hoops, step_mm):
             yield k, hoop, o, w, h, cx, cy
 
 
+def core(x: float, y: float, r: float, w: float, h: float, ow: float, oh: float):
+    """The rectangle every outer rectangle ow x oh of ``grid`` for a disc (x, y, r) and a usable
+    field w x h contains (minus ``SHRINK_MM``): the field centres span x +- (w/2 - r), so the
+    rectangles all cover x +- (ow/2 - w/2 + r), likewise in y. Where it is not on the fabric,
+    no outer rectangle is."""
+    hx, hy = ow / 2 - w / 2 + r - SHRINK_MM, oh / 2 - h / 2 + r - SHRINK_MM
+    return shapely.box(x - hx, y - hy, x + hx, y + hy)
+
+
+def _core_on(region, i, x, y, r, w, h, ow, oh) -> bool:
+    return bool(shapely.contains(region, core(float(x[i]), float(y[i]), float(r[i]),
+                                              w, h, ow, oh)))
+
+
 def grid(i, x, y, r, hoops, region, step_mm):
     """Per hoop and orientation that can hold disc i: (k, o, w, h, cx, cy, allowed mask) over
     the 2 mm grid of field centres holding it (all False, unsearched, where ``core`` is off
@@ -110,26 +128,6 @@ def grid(i, x, y, r, hoops, region, step_mm):
         on = _core_on(region, i, x, y, r, w, h, ow, oh)
         yield k, hoop, o, w, h, cx, cy, (allowed(region, cx, cy, ow, oh) if on
                                          else np.zeros(len(cx), dtype=bool))
-
-
-def _core_on(region, i, x, y, r, w, h, ow, oh) -> bool:
-    return bool(shapely.contains(region, core(float(x[i]), float(y[i]), float(r[i]),
-                                              w, h, ow, oh)))
-
-
-#: every how many grid points ``can_hoop`` tries first (a subset's allowed point is the grid's)
-COARSE = 4
-#: how much (mm) ``core`` is shrunk, so round-off never makes it larger than a rectangle
-SHRINK_MM = 1e-6
-
-
-def core(x: float, y: float, r: float, w: float, h: float, ow: float, oh: float):
-    """The rectangle every outer rectangle ow x oh of ``grid`` for a disc (x, y, r) and a usable
-    field w x h contains (minus ``SHRINK_MM``): the field centres span x +- (w/2 - r), so the
-    rectangles all cover x +- (ow/2 - w/2 + r), likewise in y. Where it is not on the fabric,
-    no outer rectangle is."""
-    hx, hy = ow / 2 - w / 2 + r - SHRINK_MM, oh / 2 - h / 2 + r - SHRINK_MM
-    return shapely.box(x - hx, y - hy, x + hx, y + hy)
 
 
 def can_hoop(i, x, y, r, hoops, region, step_mm: float = STEP_MM) -> bool:
