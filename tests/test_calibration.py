@@ -31,6 +31,17 @@ def test_recovers_keypoints_of_noise_free_synthetic_data(recovered):
     assert result.mse_mm2 < 0.01 * np.mean((start_pred - measured) ** 2)
 
 
+def test_spreads_record_the_termination_measure(recovered):
+    """One spread per generation, the measure scipy's termination compares with ``tol``: the
+    search stops at the first generation whose spread is at most ``tol``, or at ``maxiter``."""
+    result, _ = recovered
+    spreads = np.array(result.spreads)
+    assert len(spreads) == result.generations > 0 and np.all(spreads >= 0)
+    assert np.all(spreads[:-1] > cal.DE_TOL)
+    assert spreads[-1] <= cal.DE_TOL or result.generations == 12
+    assert cal.population_spread([1.0, 3.0]) == pytest.approx(0.5)
+
+
 def test_identifiability_report(recovered):
     result, _ = recovered
     ident = result.identifiability
