@@ -16,6 +16,8 @@
   ``DEFAULT_MACHINE``, ``load_machines``); ``hoop_spec``: ``Hoop`` and its JEF codes;
   ``jef_palette``: the Janome palette thread a JEF names for each colour block (``jef_threads``;
   ``JefThread.sheet_text`` is how the fabrication sheet names it).
+* ``planar``: lengths, dot products and 2 x 2 transforms of plane vectors without BLAS, so
+  that stitch paths, and the files, are the same on every processor.
 
 Below ``garment``, ``check`` and ``fabrication``; imports nothing of them.
 """

@@ -47,6 +47,7 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.files.atomic import atomic_write_bytes
 from stitchswitch.layout.embroidery import stitches as st
 from stitchswitch.layout.embroidery.hoop_spec import Hoop, jef_code_for
+from stitchswitch.layout.embroidery.planar import length
 
 log = logging.getLogger(__name__)
 
@@ -104,7 +105,7 @@ def subdivide(plan: st.StitchPlan, max_move_mm: float) -> st.StitchPlan:
     for k in range(1, len(plan.commands)):
         a, b, c = plan.xy_mm[k - 1], plan.xy_mm[k], plan.commands[k]
         if c in (st.STITCH, st.JUMP):
-            n = max(1, int(math.ceil(np.linalg.norm(b - a) / limit - 1e-12)))
+            n = max(1, int(math.ceil(length(b - a) / limit - 1e-12)))
             for i in range(1, n):
                 xy.append(a + (b - a) * i / n)
                 cmd.append(c)

@@ -28,6 +28,7 @@ import shapely
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.layout.embroidery.machines import default_machine
+from stitchswitch.layout.embroidery.planar import length
 from stitchswitch.layout.embroidery.sewing import routing
 from stitchswitch.layout.embroidery.sewing.fills import fill_piece
 from stitchswitch.layout.embroidery.sewing.records import COLOR_CHANGE, END, JUMP, STITCH, TRIM
@@ -223,7 +224,7 @@ def _pull_compensation(polys, prm: StitchParams) -> np.ndarray:
 
 def _run_inside(a: np.ndarray, b: np.ndarray, step: float) -> list[np.ndarray]:
     """Running stitches from ``a`` to ``b`` (a straight line: inside a convex piece)."""
-    n = max(1, int(math.ceil(np.linalg.norm(b - a) / step - 1e-9)))
+    n = max(1, int(math.ceil(length(b - a) / step - 1e-9)))
     return [a + (b - a) * i / n for i in range(1, n + 1)]
 
 
@@ -238,8 +239,8 @@ class _Block:
     def _variant(self, i, entry, exit_):
         options = [fill_piece(self.pieces[i], self.prm, fx, fy, self.ext[i])
                    for fy in (False, True) for fx in (False, True)]
-        cost = [(np.linalg.norm(v[0] - entry) if entry is not None else 0.0)
-                + (np.linalg.norm(v[-1] - exit_) if exit_ is not None else 0.0) for v in options]
+        cost = [(length(v[0] - entry) if entry is not None else 0.0)
+                + (length(v[-1] - exit_) if exit_ is not None else 0.0) for v in options]
         return options[int(np.argmin(cost))]
 
     def _mode(self, step) -> str:

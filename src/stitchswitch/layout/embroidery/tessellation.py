@@ -20,6 +20,8 @@ from typing import Protocol
 import numpy as np
 from scipy.optimize import brentq
 
+from stitchswitch.layout.embroidery.planar import dot
+
 SQRT3 = math.sqrt(3.0)
 
 
@@ -87,7 +89,7 @@ def disk_overlap_area(polys: np.ndarray, radius_mm: float) -> np.ndarray:
 def polygon_area(poly: np.ndarray) -> float:
     """Shoelace area of a closed polygon given as (k, 2) vertices (positive if CCW)."""
     x, y = poly[:, 0], poly[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    return 0.5 * float(np.sum(x * np.roll(y, -1)) - np.sum(y * np.roll(x, -1)))
 
 
 def clip_to_disk(poly: np.ndarray, radius_mm: float, arc_step_mm: float = 0.1) -> np.ndarray:
@@ -106,7 +108,7 @@ def clip_to_disk(poly: np.ndarray, radius_mm: float, arc_step_mm: float = 0.1) -
         if inside[e]:
             events.append((a, "v"))
         d = b - a
-        A, B, C = d @ d, a @ d, a @ a - r * r
+        A, B, C = dot(d, d), dot(a, d), dot(a, a) - r * r
         disc = B * B - A * C
         if A <= 0 or disc <= 0:
             continue

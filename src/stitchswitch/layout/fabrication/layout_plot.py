@@ -18,6 +18,7 @@ import numpy as np
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.files.figures import NO_STAMP, plot_bytes
+from stitchswitch.layout.embroidery.planar import transform
 
 
 def _pyplot():
@@ -77,7 +78,7 @@ def _marks(ax, hoop):
     for (x, y), ang in zip(alignment_marks(hoop)[1:], (-90, 0, 90, 180)):   # point inwards
         a = np.radians(ang)
         rot = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
-        p = tri @ rot.T + [x, y]
+        p = transform(tri, rot.T) + [x, y]
         ax.fill(p[:, 0], p[:, 1], color="#c0392b", lw=0, zorder=6)
 
 

@@ -17,6 +17,7 @@ import numpy as np
 
 from stitchswitch.errors import StitchSwitchError
 from stitchswitch.layout.embroidery import stitches as st
+from stitchswitch.layout.embroidery.planar import transform
 from stitchswitch.layout.fabrication.grouping.result import Hooping
 
 
@@ -43,7 +44,7 @@ def turned(geom, axes: np.ndarray):
     """The geometry in hoop axes (rows of ``axes``: the hoop's x and y in piece coordinates)."""
     if np.allclose(axes, np.eye(2)):
         return geom
-    rot = lambda p: np.asarray(p, dtype=float) @ axes.T  # noqa: E731
+    rot = lambda p: transform(p, axes.T)  # noqa: E731
     return replace(geom, centroids_mm=rot(geom.centroids_mm),
                    pieces_mm=tuple(rot(p) for p in geom.pieces_mm))
 

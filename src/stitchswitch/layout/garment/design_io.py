@@ -239,7 +239,7 @@ def _points(value, path) -> np.ndarray:
 
 def _area(ring: np.ndarray) -> float:
     x, y = ring[:, 0], ring[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    return 0.5 * float(np.sum(x * np.roll(y, -1)) - np.sum(y * np.roll(x, -1)))
 
 
 # --- writing ------------------------------------------------------------------------------

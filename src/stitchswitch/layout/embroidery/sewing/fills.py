@@ -18,6 +18,8 @@ import math
 
 import numpy as np
 
+from stitchswitch.layout.embroidery.planar import length
+
 #: a tatami piece at least this "thick" (inscribed radius) gets a tatami underlay
 TATAMI_UNDERLAY_INRADIUS_MM = 2.0
 #: the tatami underlay's row spacing and stitch length
@@ -110,7 +112,7 @@ def edge_run(poly: np.ndarray, inset_mm: float, max_stitch: float) -> list[tuple
         return []
     pts = []
     for a, b in zip(ring, np.roll(ring, -1, axis=0)):
-        n_seg = max(1, int(math.ceil(np.linalg.norm(b - a) / max_stitch)))
+        n_seg = max(1, int(math.ceil(length(b - a) / max_stitch)))
         pts += [tuple(a + (b - a) * i / n_seg) for i in range(n_seg)]
     pts.append(tuple(ring[0]))
     return pts

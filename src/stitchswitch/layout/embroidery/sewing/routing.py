@@ -34,6 +34,8 @@ import shapely
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components, dijkstra
 
+from stitchswitch.layout.embroidery.planar import length
+
 NEIGHBOUR, BRIDGE, RESTART = "neighbour", "bridge", "restart"
 
 
@@ -118,7 +120,7 @@ def route(pieces_mm, centroids_mm: np.ndarray, centre_mm, side_mm: float, neighb
         band = [i for i in sorted(unvisited) if radius[i] <= inner + side_mm]
         if needle is None:
             return min(band, key=lambda i: (radius[i], i))
-        return min(band, key=lambda i: (np.linalg.norm(centroids[i] - centroids[needle]), i))
+        return min(band, key=lambda i: (length(centroids[i] - centroids[needle]), i))
 
     cur = restart(None)
     steps = [Step(cur, RESTART)]
@@ -154,7 +156,7 @@ def crossing(a: np.ndarray, b: np.ndarray, min_stitch_mm: float) -> tuple[np.nda
     short (the thread outside the pieces stays the gap width)."""
     line = shapely.shortest_line(shapely.Polygon(a), shapely.Polygon(b))
     p, q = np.asarray(line.coords, dtype=float)
-    gap = float(np.linalg.norm(q - p))
+    gap = length(q - p)
     short = min_stitch_mm + 0.05 - gap
     if short > 0 and gap > 1e-9:
         u = (q - p) / gap
@@ -171,5 +173,5 @@ def _inward(poly: np.ndarray, p: np.ndarray, direction: np.ndarray, step: float)
         return q
     c = np.asarray(poly, dtype=float).mean(axis=0)
     d = c - p
-    n = np.linalg.norm(d)
+    n = length(d)
     return p + d / n * min(step, n) if n > 0 else p

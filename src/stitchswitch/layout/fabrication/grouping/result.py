@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from stitchswitch.layout.embroidery.hoop_spec import Hoop
+from stitchswitch.layout.embroidery.planar import transform
 
 
 @dataclass(frozen=True)
@@ -31,11 +32,11 @@ class Hooping:
     def to_hoop(self, points_mm) -> np.ndarray:
         """Stretched piece coordinates -> hoop coordinates (garment mode)."""
         p = np.asarray(points_mm, dtype=float) - np.asarray(self.centre_mm)
-        return p @ self.axes().T
+        return transform(p, self.axes().T)
 
     def to_piece(self, points_mm) -> np.ndarray:
         """Hoop coordinates -> stretched piece coordinates (garment mode)."""
-        return np.asarray(points_mm, dtype=float) @ self.axes() + np.asarray(self.centre_mm)
+        return transform(points_mm, self.axes()) + np.asarray(self.centre_mm)
 
     def with_patches(self, patch_ids, positions_mm) -> "Hooping":
         return Hooping(self.hoop, self.orientation_deg, tuple(patch_ids),
