@@ -7,7 +7,10 @@ eigenvalue), so every step descends and saddles are left along negative curvatur
 backtracked until the energy satisfies Armijo's condition; a trial outside the energy's domain
 (a zero radius or stretch) has energy +inf and is backtracked too. Converged: the max-norm of
 the free gradient is at most ``tol``. The certificate of a strict local minimum is the lowest
-eigenvalue of the scaled free Hessian at the result (> ``MIN_EIGENVALUE``).
+eigenvalue of the scaled free Hessian at the result (> ``MIN_EIGENVALUE``); where that
+eigenvalue is within the round-off band (|mu| <= ``MIN_EIGENVALUE``) and the next one is above
+it, the energy's second difference along the lowest mode (``mode_curvature``) decides
+(``solve.ShellState.certified``).
 """
 from __future__ import annotations
 
@@ -20,8 +23,9 @@ from scipy.linalg import LinAlgError, cho_factor, cho_solve, eigh
 from stitchswitch.blas import one_thread
 
 #: The scaled Hessian's lowest eigenvalue above which a converged state is a strict minimum:
-#: beyond the round-off of a scaled Hessian with entries of order one (its soft modes, slack
-#: fabric resisting with the compressive ratio c ~ 0.005, sit at 1e-12 to 1e-10).
+#: beyond the round-off of a scaled Hessian with entries of order one. Below it in magnitude
+#: (the flat states' vertical modes measure 1e-15 to 1e-10, their sign set by round-off)
+#: ``resolved_curvature`` decides.
 MIN_EIGENVALUE = 1e-13
 DEFAULT_TOL = 1e-8
 
@@ -53,12 +57,50 @@ def lowest_eigenvalue(problem, y) -> float:
 def lowest_mode(problem, y):
     """(lowest eigenvalue, its eigenvector in the unknowns, unscaled) of the Jacobi-scaled free
     Hessian at ``y``."""
+    w, V = lowest_modes(problem, y, 1)
+    return float(w[0]), V[0]
+
+
+def lowest_modes(problem, y, k: int = 2):
+    """The ``k`` lowest eigenvalues of the Jacobi-scaled free Hessian at ``y`` (ascending) and
+    their eigenvectors in the unknowns, unscaled (rows)."""
     with one_thread():
         _, _, A, D = _scaled(problem, y)
-        w, V = eigh(A, subset_by_index=[0, 0])
-    v = np.zeros(y.size)
-    v[problem.free] = V[:, 0] / D
-    return float(w[0]), v
+        w, V = eigh(A, subset_by_index=[0, k - 1])
+    out = np.zeros((k, y.size))
+    out[:, problem.free] = (V / D[:, None]).T
+    return w, out
+
+
+def mode_curvature(problem, y, v, amplitude_mm: float) -> float:
+    """The energy's central second difference along ``v`` (scaled to max-norm 1) at
+    ``amplitude_mm``: E(y + a v) + E(y - a v) - 2 E(y), in units of E.
+
+    Along the softest mode the assembled Hessian cannot resolve the curvature when its scaled
+    eigenvalue is at the eigensolver's round-off (about sqrt(n) eps |A|, where a few stiff
+    unknowns dominate the Jacobi scaling); the energy, evaluated from the fields, resolves it to
+    about eps |E| / a^2."""
+    v = v / max(float(np.max(np.abs(v))), 1e-300)
+    E0 = problem.energy(y)
+    return float(problem.energy(y + amplitude_mm * v) + problem.energy(y - amplitude_mm * v) - 2.0 * E0)
+
+
+#: How far the second differences at amplitudes a and a / 10 may depart from the quadratic
+#: ratio 100 for the curvature to count as resolved.
+QUADRATIC_TOLERANCE = 0.05
+
+
+def resolved_curvature(problem, y, v, amplitude_mm: float) -> bool:
+    """Whether the energy's curvature along ``v`` is positive and resolved: ``mode_curvature``
+    at ``amplitude_mm`` / 10 is above the energy's round-off (64 eps |E|), and the one at
+    ``amplitude_mm`` is 100 times it to ``QUADRATIC_TOLERANCE`` (the quadratic regime, so that
+    a higher-order rise cannot hide a negative curvature)."""
+    floor = 64.0 * np.finfo(float).eps * max(abs(problem.energy(y)), 1.0)
+    big = mode_curvature(problem, y, v, amplitude_mm)
+    small = mode_curvature(problem, y, v, 0.1 * amplitude_mm)
+    if not (np.isfinite(big) and np.isfinite(small) and small > floor):
+        return False
+    return bool(abs(big / (100.0 * small) - 1.0) <= QUADRATIC_TOLERANCE)
 
 
 def _direction(A, gs):
