@@ -89,10 +89,10 @@ def test_studio_in_chromium(tmp_path):
             page.wait_for_function("Number(document.querySelector('#canvas circle[data-patch=p1]')"
                                    ".getAttribute('cx')) > 90")
             # zoom in on the canvas and back (toolbar), the rulers follow
-            box0 = page.locator("#canvas svg").get_attribute("viewBox")
+            box0 = page.locator("#canvas svg").first.get_attribute("viewBox")
             page.locator("#zoom-in").click()
             page.wait_for_function(f"document.querySelector('#canvas svg').getAttribute('viewBox') != '{box0}'")
-            assert float(page.locator("#canvas svg").get_attribute("viewBox").split()[2]) < float(box0.split()[2])
+            assert float(page.locator("#canvas svg").first.get_attribute("viewBox").split()[2]) < float(box0.split()[2])
             assert page.locator("#canvas [data-ruler-x]").count() > 2
             page.locator("#fit-view").click()
             page.wait_for_function(f"document.querySelector('#canvas svg').getAttribute('viewBox') == '{box0}'")

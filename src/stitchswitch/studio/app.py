@@ -40,6 +40,8 @@ DRAG = (f"if ($event.buttons === 1) {{ window.studioDragAt = {POINTER}; "
         "if (!window.studioDragTimer) window.studioDragTimer = window.setTimeout(() => { "
         "window.studioDragTimer = null; trigger('studio_drag', window.studioDragAt) }, "
         f"{DRAG_THROTTLE_MS}) }}")
+#: each canvas layer fills the canvas, stacked in the order made
+CANVAS_LAYER = "position:absolute; inset:0"
 #: zoom factor per wheel step or button press
 ZOOM_STEP = 1.25
 #: the 3D scene is built once the page has drawn the panel (it says so in the next animation
@@ -131,7 +133,7 @@ def build_app(session, server=None):
                 if p.composite is not None:
                     state.core_d, state.core_fill = p.composite.core_diameter_mm, p.composite.core_fill
                 state.conductive = p.conductive or ""
-            state.canvas_svg = session.canvas_svg()
+            state.canvas_pieces, state.canvas_svg, state.canvas_rulers = session.canvas_layers()
             state.violations = live_check.rows(session.violations)
             state.small_pieces = live_check.small_rows(session.small_pieces)
             state.n_errors = live_check.errors(session.violations)
@@ -245,7 +247,7 @@ def build_app(session, server=None):
             return
         pt = canvas.to_mm(session.view(), px, py, w, h)
         session.drag_to(pt[0] - drag["start"][0], pt[1] - drag["start"][1])
-        state.canvas_svg = session.canvas_svg()
+        state.canvas_svg = session.canvas_layers()[1]
         state.drag_stamp += 1
         state.flush()
 
@@ -482,11 +484,14 @@ def build_app(session, server=None):
             html.Div("{{ message }}", id="message", classes="text-body-2 pa-2 text-red")
         with layout.content:
             with html.Div(style="display:flex; height:100%; width:100%"):
-                html.Div(v_html=("canvas_svg",), id="canvas", style="flex:1; min-width:0; user-select:none",
-                         mousedown=(on_down, POINTER), mouseup=(on_up, POINTER), tabindex="0",
-                         mousemove=DRAG,
-                         wheel=(on_wheel, WHEEL),
-                         keydown=(on_key, "[$event.key]"))
+                # the canvas's three layers (``canvas.layers``) one over the other: an edit
+                # replaces only the patches' SVG
+                with html.Div(id="canvas", style="flex:1; min-width:0; user-select:none; "
+                              "position:relative", mousedown=(on_down, POINTER),
+                              mouseup=(on_up, POINTER), tabindex="0", mousemove=DRAG,
+                              wheel=(on_wheel, WHEEL), keydown=(on_key, "[$event.key]")):
+                    for key in ("canvas_pieces", "canvas_svg", "canvas_rulers"):
+                        html.Div(v_html=(key,), style=CANVAS_LAYER)
                 client.Script(SOFTWARE_GL_NO_MSAA)      # before the view makes its context
                 with html.Div(style="flex:1; min-width:0", id="view3d"):
                     # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js has

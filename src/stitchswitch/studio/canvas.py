@@ -2,7 +2,9 @@
 rulers along the top and left edges, the patches as their relaxed footprints (diameter d / eta)
 with ids, filled by predicted height, the selection, patches named by a check violation, while
 a patch is dragged the piece-edge rule's lines (``guides``), and in Fabrication Mode the
-hoopings with their order. ``to_mm`` maps a pointer position on the drawn SVG back to garment
+hoopings with their order. ``svg`` draws it as one SVG; ``layers`` as three drawn one over
+the other (the grid and pieces, the patches, the rulers), so that the page replaces only the
+patches' markup on an edit. ``to_mm`` maps a pointer position on the drawn SVG back to garment
 mm; ``zoomed`` and ``panned`` move the view.
 
 Garment y points up; the SVG's y points down, so y is negated (the viewBox is in mm).
@@ -20,6 +22,7 @@ from matplotlib.colors import Normalize, to_hex
 MARGIN_MM = 20.0
 GRID_MM = 50.0
 STATUS_STROKE = {"error": "#d62728", "warning": "#ff9e24"}
+BACKGROUND = "#fafafa"
 
 
 @dataclass(frozen=True)
@@ -159,17 +162,14 @@ def _rings(region) -> list:
             for r in (poly.exterior, *poly.interiors)]
 
 
-def svg(design, heights: dict, eta: float, selected: str | None = None, status: dict | None = None,
-        hoopings=(), view: View | None = None, also_selected=(), dragging=(), limits=None) -> str:
-    """The canvas of ``design``; ``heights``: {patch id: h mm or None}; ``status``: {patch id:
-    "error" | "warning"}; ``hoopings``: ((hoop rectangle corners (4, 2) garment mm, label), ...);
-    ``view``: the zoomed and panned view (default: fit the pieces); ``also_selected``: the rest
-    of a multiple selection; ``dragging``: patches being dragged, whose piece-edge rule is drawn
-    (``guides``) with ``limits`` (``CheckLimits``)."""
-    v = view or view_of(design)
-    status = status or {}
-    out = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{_f(v.x0)} {_f(v.y0)} {_f(v.width)} '
-           f'{_f(v.height)}" width="100%" height="100%" style="background:#fafafa">']
+def _open(v: View, background: str = "none") -> str:
+    return (f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{_f(v.x0)} {_f(v.y0)} {_f(v.width)} '
+            f'{_f(v.height)}" width="100%" height="100%" style="background:{background}">')
+
+
+def pieces_layer(design, v: View) -> list[str]:
+    """The 50 mm grid and the pieces with their names: what only a zoom, pan or size changes."""
+    out = []
     gx = np.arange(np.ceil(v.x0 / GRID_MM), np.floor((v.x0 + v.width) / GRID_MM) + 1) * GRID_MM
     gy = np.arange(np.ceil(v.y0 / GRID_MM), np.floor((v.y0 + v.height) / GRID_MM) + 1) * GRID_MM
     out += [f'<line x1="{_f(x)}" y1="{_f(v.y0)}" x2="{_f(x)}" y2="{_f(v.y0 + v.height)}" '
@@ -182,6 +182,15 @@ def svg(design, heights: dict, eta: float, selected: str | None = None, status: 
         c = np.asarray(piece.outline_mm).mean(axis=0)
         out.append(f'<text x="{_f(c[0])}" y="{_f(-c[1])}" font-size="10" fill="#888" '
                    f'text-anchor="middle">{escape(piece.name)}</text>')
+    return out
+
+
+def patches_layer(design, heights: dict, eta: float, selected=None, status=None, hoopings=(),
+                  also_selected=(), dragging=(), limits=None) -> list[str]:
+    """The patches (footprints filled by height, ids, selection and check status), the edge
+    rule of dragged patches and the hoopings: what an edit changes."""
+    status = status or {}
+    out = []
     known = [abs(h) for h in heights.values() if h is not None]
     hmax = max(known + [1.0])
     fills = _height_colours([heights.get(p.id) for p in design.patches], hmax)
@@ -205,6 +214,32 @@ def svg(design, heights: dict, eta: float, selected: str | None = None, status: 
                    'stroke-dasharray="6 3" pointer-events="none"/>')
         out.append(f'<text x="{_f(corners[0][0] + 3)}" y="{_f(-corners[0][1] - 3)}" font-size="10" '
                    f'fill="#1f77b4" pointer-events="none">{escape(label)}</text>')
-    out += rulers(v)
-    out.append("</svg>")
-    return "".join(out)
+    return out
+
+
+def svg(design, heights: dict, eta: float, selected: str | None = None, status: dict | None = None,
+        hoopings=(), view: View | None = None, also_selected=(), dragging=(), limits=None) -> str:
+    """The canvas of ``design`` as one SVG; ``heights``: {patch id: h mm or None}; ``status``:
+    {patch id: "error" | "warning"}; ``hoopings``: ((hoop rectangle corners (4, 2) garment mm,
+    label), ...); ``view``: the zoomed and panned view (default: fit the pieces);
+    ``also_selected``: the rest of a multiple selection; ``dragging``: patches being dragged,
+    whose piece-edge rule is drawn (``guides``) with ``limits`` (``CheckLimits``)."""
+    v = view or view_of(design)
+    return "".join([_open(v, BACKGROUND), *pieces_layer(design, v),
+                    *patches_layer(design, heights, eta, selected, status, hoopings,
+                                   also_selected, dragging, limits),
+                    *rulers(v), "</svg>"])
+
+
+def layers(design, heights: dict, eta: float, selected: str | None = None,
+           status: dict | None = None, hoopings=(), view: View | None = None, also_selected=(),
+           dragging=(), limits=None) -> tuple[str, str, str]:
+    """The canvas of ``svg`` as three SVGs with the same viewBox, drawn one over the other:
+    (pieces, patches, rulers). The page replaces an SVG's markup whole when it changes, and an
+    edit changes only the patches: the grid, pieces and rulers stay in the page until the view
+    or the size changes."""
+    v = view or view_of(design)
+    return ("".join([_open(v, BACKGROUND), *pieces_layer(design, v), "</svg>"]),
+            "".join([_open(v), *patches_layer(design, heights, eta, selected, status, hoopings,
+                                             also_selected, dragging, limits), "</svg>"]),
+            "".join([_open(v), *rulers(v), "</svg>"]))

@@ -101,15 +101,21 @@ class Session:
     def end_drag(self) -> None:
         self.dragging, self.drag_offset = (), None
 
-    def canvas_svg(self) -> str:
+    def _canvas_args(self) -> tuple:
         hoops = fabrication.hooping_outlines(self.order, self.eta) if self.order is not None else ()
         design = self.state.design
         if self.dragging and self.drag_offset is not None:
             design = self.state.moved(self.dragging, *self.drag_offset)
-        return canvas.svg(design, heights_mm(self.dmap, design), self.eta,
-                          self.state.selected, live_check.patch_status(self.violations), hoops,
-                          self.view(), self.state.also_selected, self.dragging,
-                          self.checker.limits)
+        return (design, heights_mm(self.dmap, design), self.eta, self.state.selected,
+                live_check.patch_status(self.violations), hoops, self.view(),
+                self.state.also_selected, self.dragging, self.checker.limits)
+
+    def canvas_svg(self) -> str:
+        return canvas.svg(*self._canvas_args())
+
+    def canvas_layers(self) -> tuple[str, str, str]:
+        """The canvas as (pieces, patches, rulers) SVGs, ``canvas.layers``."""
+        return canvas.layers(*self._canvas_args())
 
     def view(self):
         return self.view_box or canvas.view_of(self.state.design)
