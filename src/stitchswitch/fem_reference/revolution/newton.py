@@ -72,16 +72,17 @@ def lowest_modes(problem, y, k: int = 2):
     return w, out
 
 
-def mode_curvature(problem, y, v, amplitude_mm: float) -> float:
+def mode_curvature(problem, y, v, amplitude_mm: float, energy: float | None = None) -> float:
     """The energy's central second difference along ``v`` (scaled to max-norm 1) at
-    ``amplitude_mm``: E(y + a v) + E(y - a v) - 2 E(y), in units of E.
+    ``amplitude_mm``: E(y + a v) + E(y - a v) - 2 E(y), in units of E (``energy``: E(y), if
+    already known).
 
     Along the softest mode the assembled Hessian cannot resolve the curvature when its scaled
     eigenvalue is at the eigensolver's round-off (about sqrt(n) eps |A|, where a few stiff
     unknowns dominate the Jacobi scaling); the energy, evaluated from the fields, resolves it to
     about eps |E| / a^2."""
     v = v / max(float(np.max(np.abs(v))), 1e-300)
-    E0 = problem.energy(y)
+    E0 = problem.energy(y) if energy is None else energy
     return float(problem.energy(y + amplitude_mm * v) + problem.energy(y - amplitude_mm * v) - 2.0 * E0)
 
 
@@ -95,9 +96,10 @@ def resolved_curvature(problem, y, v, amplitude_mm: float) -> bool:
     at ``amplitude_mm`` / 10 is above the energy's round-off (64 eps |E|), and the one at
     ``amplitude_mm`` is 100 times it to ``QUADRATIC_TOLERANCE`` (the quadratic regime, so that
     a higher-order rise cannot hide a negative curvature)."""
-    floor = 64.0 * np.finfo(float).eps * max(abs(problem.energy(y)), 1.0)
-    big = mode_curvature(problem, y, v, amplitude_mm)
-    small = mode_curvature(problem, y, v, 0.1 * amplitude_mm)
+    E0 = problem.energy(y)
+    floor = 64.0 * np.finfo(float).eps * max(abs(E0), 1.0)
+    big = mode_curvature(problem, y, v, amplitude_mm, E0)
+    small = mode_curvature(problem, y, v, 0.1 * amplitude_mm, E0)
     if not (np.isfinite(big) and np.isfinite(small) and small > floor):
         return False
     return bool(abs(big / (100.0 * small) - 1.0) <= QUADRATIC_TOLERANCE)

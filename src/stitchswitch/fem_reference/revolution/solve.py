@@ -75,9 +75,10 @@ def build(patch: Patch, material: Material = DEFAULT_MATERIAL, params: ShellPara
 @dataclass(frozen=True)
 class ShellState:
     """An equilibrium of ``problem``: unknowns ``y``, energy (model units, mm^2), residual,
-    iterations, the two lowest eigenvalues of the scaled Hessian, whether the energy's curvature
-    along the lowest mode is positive and resolved (``newton.resolved_curvature``) and wall
-    time."""
+    iterations, the two lowest eigenvalues of the scaled Hessian, wall time, and
+    ``soft_mode_rises``: whether the lowest eigenvalue is within the round-off band, the second
+    above it, and the energy's curvature along the lowest mode positive and resolved
+    (``newton.resolved_curvature``)."""
 
     problem: ShellProblem
     y: np.ndarray
@@ -93,13 +94,7 @@ class ShellState:
     @property
     def certified(self) -> bool:
         """Converged and a strict local minimum (the module docstring)."""
-        if not self.converged:
-            return False
-        mu = self.lowest_eigenvalue
-        if mu > MIN_EIGENVALUE:
-            return True
-        return bool(mu >= -MIN_EIGENVALUE and self.second_eigenvalue > MIN_EIGENVALUE
-                    and self.soft_mode_rises)
+        return bool(self.converged and (self.lowest_eigenvalue > MIN_EIGENVALUE or self.soft_mode_rises))
 
     @property
     def apex_mm(self) -> float:
@@ -159,7 +154,7 @@ def relax(problem: ShellProblem, y0: np.ndarray, *, max_iter: int = 300, tol: fl
         apex = problem.meridian.dof("inner", "z", 0)
         v = v * (np.sign(v[apex]) or 1.0) / max(float(np.max(np.abs(v))), 1e-300)
         y = res.y + 0.05 * problem.meridian.rb * v
-    rises = bool(abs(mu) <= MIN_EIGENVALUE and res.converged
+    rises = bool(res.converged and abs(mu) <= MIN_EIGENVALUE < mu2
                  and resolved_curvature(problem, res.y, v, MODE_AMPLITUDE * problem.meridian.rb))
     return ShellState(problem, res.y, res.energy, res.residual, res.converged, total_it, float(mu),
                       total_s, float(mu2), rises)
