@@ -23,6 +23,7 @@ from stitchswitch.files import json_checks as jc
 from stitchswitch.files.atomic import atomic_write_text
 from stitchswitch.files.json_checks import child
 from stitchswitch.layout.embroidery.machines import DEFAULT_MACHINE, builtin_catalogue
+from stitchswitch.layout.embroidery.tessellation import polygon_area
 from stitchswitch.layout.garment.design import (
     STATES,
     VERSION,
@@ -107,7 +108,7 @@ def _piece(obj, path) -> PieceSpec:
         ring = ring[:-1]                     # a repeated first point is accepted and dropped
     if len(ring) < 3:
         jc.fail(outline_path, f"needs at least 3 distinct points, got {len(ring)}")
-    if abs(_area(ring)) <= TOL_MM:
+    if abs(polygon_area(ring)) <= TOL_MM:
         jc.fail(outline_path, "encloses no area")
     return PieceSpec(name, size, source, ring)
 
@@ -235,11 +236,6 @@ def _point(value, path) -> tuple[float, float]:
 def _points(value, path) -> np.ndarray:
     pts = jc.items(value, path, _point)
     return np.asarray(pts, dtype=float).reshape(-1, 2)
-
-
-def _area(ring: np.ndarray) -> float:
-    x, y = ring[:, 0], ring[:, 1]
-    return 0.5 * float(np.sum(x * np.roll(y, -1)) - np.sum(y * np.roll(x, -1)))
 
 
 # --- writing ------------------------------------------------------------------------------

@@ -26,7 +26,6 @@ import math
 import numpy as np
 
 from stitchswitch.layout.embroidery import planar
-from stitchswitch.layout.embroidery.planar import dot, length
 from stitchswitch.layout.embroidery.sewing.records import COLOR_CHANGE, END, JUMP, STITCH, TRIM
 
 
@@ -39,20 +38,20 @@ def _filtered(points: list, min_mm: float, max_mm: float) -> list:
     out = [points[0]]
     for p, c, o in points[1:]:
         last = out[-1][0]
-        if c == STITCH and length(p - last) < min_mm - 1e-9:
+        if c == STITCH and planar.length(p - last) < min_mm - 1e-9:
             continue
         out.append((p, c, o))
     end = points[-1]
     if len(points) > 1 and out[-1] is not end:
         # keep where the run ends (the next crossing starts there): drop the point before it
-        while len(out) > 1 and length(end[0] - out[-1][0]) < min_mm - 1e-9:
+        while len(out) > 1 and planar.length(end[0] - out[-1][0]) < min_mm - 1e-9:
             out.pop()
-        if length(end[0] - out[-1][0]) >= min_mm - 1e-9:
+        if planar.length(end[0] - out[-1][0]) >= min_mm - 1e-9:
             out.append(end)
     split = [out[0]]
     for p, c, o in out[1:]:
         a, oa = split[-1][0], split[-1][2]
-        n = max(1, int(math.ceil(length(p - a) / max_mm - 1e-9))) if c == STITCH else 1
+        n = max(1, int(math.ceil(planar.length(p - a) / max_mm - 1e-9))) if c == STITCH else 1
         for i in range(1, n):
             split.append((snap(a + (p - a) * i / n), STITCH, o if o == oa else -1))
         split.append((p, c, o))
@@ -67,7 +66,8 @@ def _lock_point(path: list[np.ndarray], room: np.ndarray, length: float) -> np.n
     for q in path[1:]:
         if planar.length(q - s) >= length:
             d = q - prev
-            a, b, c = dot(d, d), 2 * dot(d, prev - s), dot(prev - s, prev - s) - length * length
+            e = prev - s
+            a, b, c = planar.dot(d, d), 2 * planar.dot(d, e), planar.dot(e, e) - length * length
             t = (-b + math.sqrt(max(b * b - 4 * a * c, 0.0))) / (2 * a) if a > 0 else 1.0
             return snap(prev + min(max(t, 0.0), 1.0) * d)
         prev = q
