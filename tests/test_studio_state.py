@@ -320,6 +320,13 @@ def test_dragged_patches_follow_the_pointer_with_their_edge_rule(tmp_path):
     svg = session.canvas_svg()
     assert circle(svg) == pytest.approx((600.0, 150.0))
     assert centre_rule_x(svg) == pytest.approx(500.0 + inset, abs=0.05)   # piece b's rule
+    # the page draws the canvas in three layers, and a drag redraws only the patches' one
+    pieces, patches, rulers = session.canvas_layers()
+    assert session.canvas_patches() == patches
+    assert circle(patches) == pytest.approx((600.0, 150.0))
+    assert centre_rule_x(patches) == pytest.approx(500.0 + inset, abs=0.05)
+    inner = [re.sub(r"^<svg[^>]*>|</svg>$", "", layer) for layer in (pieces, patches, rulers)]
+    assert re.sub(r"^<svg[^>]*>|</svg>$", "", svg) == "".join(inner)   # the single SVG's markup
     assert session.state.design is before and session.state.changed == edits   # not an edit
     session.end_drag()
     session.move(pid, (600.0, 150.0))                                 # the release

@@ -247,7 +247,7 @@ def build_app(session, server=None):
             return
         pt = canvas.to_mm(session.view(), px, py, w, h)
         session.drag_to(pt[0] - drag["start"][0], pt[1] - drag["start"][1])
-        state.canvas_svg = session.canvas_layers()[1]
+        state.canvas_svg = session.canvas_patches()
         state.drag_stamp += 1
         state.flush()
 

@@ -4,8 +4,8 @@ with ids, filled by predicted height, the selection, patches named by a check vi
 a patch is dragged the piece-edge rule's lines (``guides``), and in Fabrication Mode the
 hoopings with their order. ``svg`` draws it as one SVG; ``layers`` as three drawn one over
 the other (the grid and pieces, the patches, the rulers), so that the page replaces only the
-patches' markup on an edit. ``to_mm`` maps a pointer position on the drawn SVG back to garment
-mm; ``zoomed`` and ``panned`` move the view.
+patches' markup on an edit; ``patches_svg`` is that layer alone. ``to_mm`` maps a pointer
+position on the drawn SVG back to garment mm; ``zoomed`` and ``panned`` move the view.
 
 Garment y points up; the SVG's y points down, so y is negated (the viewBox is in mm).
 """
@@ -240,6 +240,15 @@ def layers(design, heights: dict, eta: float, selected: str | None = None,
     or the size changes."""
     v = view or view_of(design)
     return ("".join([_open(v, BACKGROUND), *pieces_layer(design, v), "</svg>"]),
-            "".join([_open(v), *patches_layer(design, heights, eta, selected, status, hoopings,
-                                             also_selected, dragging, limits), "</svg>"]),
+            patches_svg(design, heights, eta, selected, status, hoopings, v, also_selected,
+                        dragging, limits),
             "".join([_open(v), *rulers(v), "</svg>"]))
+
+
+def patches_svg(design, heights: dict, eta: float, selected: str | None = None,
+                status: dict | None = None, hoopings=(), view: View | None = None,
+                also_selected=(), dragging=(), limits=None) -> str:
+    """The patches' layer of ``layers`` alone: what a drag redraws."""
+    v = view or view_of(design)
+    return "".join([_open(v), *patches_layer(design, heights, eta, selected, status, hoopings,
+                                             also_selected, dragging, limits), "</svg>"])

@@ -117,6 +117,10 @@ class Session:
         """The canvas as (pieces, patches, rulers) SVGs, ``canvas.layers``."""
         return canvas.layers(*self._canvas_args())
 
+    def canvas_patches(self) -> str:
+        """The patches' layer alone (``canvas.patches_svg``): what a drag changes."""
+        return canvas.patches_svg(*self._canvas_args())
+
     def view(self):
         return self.view_box or canvas.view_of(self.state.design)
 
