@@ -62,7 +62,8 @@ def report_dict(disc, data, start, start_label: str = "default") -> dict:
     return json_safe({
         "generator": GENERATOR, "version": __version__,
         "missing_effect": s["missing_effect"], "significant": s["significant"],
-        "effect_parameters": s["effect_parameters"], "decision": s["decision"],
+        "effect_parameters": s["effect_parameters"], "estimate": s.get("estimate"),
+        "decision": s["decision"],
         "ranking": s["ranking"], "before": s["before"], "after": s["after"],
         "verdict": s["verdict"], "indistinguishable": s["indistinguishable"],
         "missing_effects": s["missing_effects"], "forward": s["forward"],
@@ -137,7 +138,7 @@ def _story(rep: dict) -> dict:
         best_q = max(QUANTITIES, key=lambda q: abs(sig["per_quantity"][q]))
         verdict = (f"Missing effect: **{name}** ({get_effect(name).summary}). " + rep["decision"] +
                    ". Fitted: " + ", ".join(f"{k} = {v:.4g}" for k, v in
-                                             rep["effect_parameters"].items()) + ".")
+                                             rep["effect_parameters"].items()) + _estimate(rep) + ".")
         evidence = (f"Why it matches: {unabs(sig['unabsorbed'])} of its signature cannot be "
                     f"absorbed by recalibrating the coefficients, and that part correlates with "
                     f"the residual pattern at {sig['correlation']:+.2f} over all quantities "
@@ -181,6 +182,16 @@ def _story(rep: dict) -> dict:
     return {"calib": calib, "where": where, "res_table": res_table, "rank_table": rank_table,
             "verdict": verdict, "evidence": evidence, "gap_table": gap_table,
             "after_text": after_text}
+
+
+def _estimate(rep: dict) -> str:
+    """How the reported strength was estimated after the decision (empty if not recorded)."""
+    e = rep.get("estimate")
+    if not e:
+        return ""
+    return (f" (the named model refitted after the decision, its strength profiled: training "
+            f"MSE {e['train_mse_mm2_before']:.3f} -> {e['train_mse_mm2']:.3f} mm^2; the ranking "
+            "shows the fit that was tested)")
 
 
 def unabs(x: float) -> str:

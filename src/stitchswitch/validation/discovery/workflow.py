@@ -13,7 +13,8 @@ propose the samples that would decide.
    effect (``fit.fit_effect``), and a screening score: ``cross_validate`` with a fold budget of
    one function evaluation, which takes no step, so it is the training MSE at the screening
    resolution; it only picks the leaders.
-3. **Refine the leaders**: the ``config.refine`` best-screened candidates are polished and
+3. **Refine the leaders**: the ``config.refine`` best-screened candidates are polished,
+   profiled along their strength (``fit.refine_estimate``, ``config.profile_leaders``) and
    cross-validated (``cv``, fold refits of at most one step) at full resolution; a leader at
    zero strength is the starting model and takes its cross-validation. The starting model is
    re-polished from the coefficients of every leader that would pass the F test
@@ -22,18 +23,22 @@ propose the samples that would decide.
 4. **Decide**: a candidate passes when it lowers the starting model's
    cross-validated error, its F test against the equally polished starting model gives p <
    alpha / (number of candidates), and its strength is not zero; the decision is about the
-   best-ranked passing one (``lead_candidate``). Other leaders whose held-out
-   losses are within the noise of it (``cv.within_noise``) make the verdict
-   "indistinguishable" (none is named). A passing effect is named only if it shrinks the
+   best-ranked passing one (``lead_candidate``). Other leaders that also improve on the
+   starting model (F test at alpha) and whose held-out losses, on the cross-validated
+   training rows and the validation rows together, are within the noise of its own
+   (``rivals``) make the verdict "indistinguishable" (none is named). A passing effect is named only if it shrinks the
    systematic part (``residuals.smooth_split``) of the systematic keypoints it claims (those
    whose unabsorbed signature correlates positively with the residuals): their summed mean
    square systematic part must fall and none may grow by more than its noise
    (``residuals.not_shrunk``), and must predict the file's validation rows better than the
    starting model (``cv.validation_score``, the noise-weighted MAE).
-5. **Report** the residual tests before and after (``residuals``; a systematic residual left
+5. **Report** the named model as estimated after the decision (``fit.refine_estimate``: its
+   strength profiled and every parameter refitted with the full step budget; the ranking
+   keeps the fit that was tested), the residual tests before and after (``residuals``; a systematic residual left
    is "an unexplained residual"), the estimated noise floor and the share of the systematic
    residual explained, and the next samples (``proposal``) that best separate the leading
-   models. The validation rows take no part in fitting or ranking; they only veto a name.
+   models. The validation rows take no part in fitting or ranking; they veto a name and
+   help tell the leader from its rivals.
 """
 from __future__ import annotations
 
@@ -60,6 +65,7 @@ from stitchswitch.validation.discovery.fit import (
     fit,
     fit_effect,
     jacobian,
+    refine_estimate,
 )
 from stitchswitch.validation.discovery.residuals import residual_analysis
 from stitchswitch.validation.discovery.robust import winsorize
@@ -69,7 +75,7 @@ from stitchswitch.validation.measured import QUANTITIES, MeasuredData
 from stitchswitch.validation.metrics import split_metrics
 
 __all__ = ["DiscoveryConfig", "Candidate", "Discovery", "discover", "stage_count", "FORWARD_FITS",
-           "lead_candidate", "screen_spec"]
+           "lead_candidate", "rivals", "screen_spec"]
 
 #: Forward selection fits this many second effects: those whose unabsorbed signature (on top of
 #: the first effect) correlates best with the residual the first one leaves. Fitting all five
@@ -96,7 +102,10 @@ class DiscoveryConfig:
     training design's equilibrium along the strength scans and evaluate a bistable design on the
     branch nearest its measured row (``fit.follow_branches``); False: cold solves only.
     ``profile_points``: scanned strengths whose coefficients are refitted with the strength held
-    (``fit.scan_effect``; 0: the one-step correction only)."""
+    (``fit.scan_effect``; 0: the one-step correction only). ``profile_leaders``: each leader
+    polished at full resolution at a non-zero strength is profiled along its strength and
+    refitted (``fit.refine_estimate``) before it is tested: a leader stopped short of its basin
+    loses to a rival that happened to get closer to its own."""
 
     effects: tuple | None = None
     folds: int = 5
@@ -117,6 +126,7 @@ class DiscoveryConfig:
     forward: bool = True
     branches: bool = True
     profile_points: int = 0
+    profile_leaders: bool = True
 
     def __post_init__(self) -> None:
         names = tuple(self.effects) if self.effects is not None else tuple(LIBRARY)
@@ -178,6 +188,14 @@ class Candidate:
     refined: bool = True
     zero_strength: bool = False
     row_loss: np.ndarray | None = field(default=None, repr=False, compare=False)
+    val_row_loss: np.ndarray | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def held_out_loss(self) -> np.ndarray:
+        """The loss of every row the fit did not see: the training rows' cross-validated
+        losses, then the validation rows' (mean squared error over the five keypoints)."""
+        parts = [a for a in (self.row_loss, self.val_row_loss) if a is not None]
+        return np.concatenate(parts) if parts else np.zeros(0)
 
     def as_dict(self) -> dict:
         return {"effect": self.effect, "score": self.cv_mse_mm2,
@@ -279,7 +297,9 @@ def _candidate(name, spec, f, m_tr, cv, cv0, why, how, rss0, k0, m, config, ev, 
         val_mae_after_mm={q: v["mae_mm"] for q, v in _metrics(pred_va, m_va).items()},
         signature=why, uncertified_solves=f.uncertified, fit_start=how,
         spec=spec, x=f.x, resolution_nodes=spec.start.n_nodes, refined=refined,
-        zero_strength=zero, row_loss=cv.row_loss)
+        zero_strength=zero, row_loss=cv.row_loss,
+        val_row_loss=np.mean((pred_va - np.asarray(m_va, dtype=float)) ** 2, axis=1)
+        if len(d_va) else None)
 
 
 def lead_candidate(ranking):
@@ -289,6 +309,22 @@ def lead_candidate(ranking):
     and, when the data cannot tell them apart, reported with it as indistinguishable instead of
     hiding a significant effect behind an insignificant one."""
     return next((c for c in ranking if c.significant), ranking[0])
+
+
+def rivals(top, ranking, cv0_score_mm2: float, alpha: float, seed: int = 0) -> list:
+    """The candidates reported with ``top`` as indistinguishable from it. A rival must itself
+    explain the residual: refined, not at zero strength, a cross-validated error below the
+    starting model's and an F test against it at level ``alpha`` (uncorrected: a rival need
+    not survive the family-wise correction, but an effect that does not improve on the
+    starting model at all explains nothing the data could confuse with ``top``); and its
+    held-out losses must be within the noise of ``top``'s (``cv.within_noise``, paired over
+    every held-out row: the training rows' cross-validated losses and the validation rows',
+    twice the rows the training folds alone give)."""
+    others = {c.effect: c.held_out_loss for c in ranking
+              if c is not top and c.refined and not c.zero_strength
+              and c.cv_mse_mm2 < cv0_score_mm2 and c.p_value < alpha}
+    close = within_noise(top.held_out_loss, others, alpha, seed)
+    return [c for c in ranking if c is not top and c.effect in close]
 
 
 def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
@@ -443,6 +479,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         spec = base.with_effect(name)
         if screen != base:
             f = fit(spec, ev, d_tr, m_fit, screened_fit[name].x, max_nfev=config.polish_max_nfev)
+            if config.profile_leaders and not _zero(spec, f.x):
+                f, _ = refine_estimate(f, ev, d_tr, m_fit, max_nfev=config.polish_max_nfev)
         else:
             f = _refreshed(screened_fit[name], ev, d_tr, m_fit)
         refined_fits[name] = f
@@ -488,18 +526,27 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     top = lead_candidate(ranking)
     group = []
     if top.significant:
-        others = {c.effect: c.row_loss for c in ranking if c is not top
-                  and c.refined and not c.zero_strength and c.cv_mse_mm2 < cv0.score_mm2}
-        close = within_noise(top.row_loss, others, config.alpha, config.seed)
-        group = [top] + [c for c in ranking if c is not top and c.effect in close]
+        group = [top] + rivals(top, ranking, cv0.score_mm2, config.alpha, config.seed)
     chosen = top if top.significant else None
-    after = before.copy()
-    if chosen:
-        after[tr] = ev.one(chosen.spec, chosen.x, d_tr)
-        after[va] = ev.one(chosen.spec, chosen.x, d_va)
-    split1 = smooth_split(d_all[tr], p_all[tr], m_tr - after[tr])
-    res_after = residual_analysis(d_all, p_all, measured - after, QUANTITIES, alpha=config.alpha,
-                                  permutations=config.permutations, seed=config.seed)
+    e0 = sum(split0["systematic_energy_mm2"])
+
+    def with_model(spec, x):
+        """(predictions of every row, smooth split and residual analysis of the training
+        residuals, the quantities still systematic, the share of the systematic residual
+        explained) with the model ``spec`` at ``x``; the starting model's for None."""
+        pred = before.copy()
+        if spec is not None:
+            pred[tr] = ev.one(spec, x, d_tr)
+            pred[va] = ev.one(spec, x, d_va)
+        sp = smooth_split(d_all[tr], p_all[tr], m_tr - pred[tr])
+        res = residual_analysis(d_all, p_all, measured - pred, QUANTITIES, alpha=config.alpha,
+                                permutations=config.permutations, seed=config.seed)
+        e1 = sum(sp["systematic_energy_mm2"])
+        return (pred, sp, res, [q for q in QUANTITIES if res[q]["systematic"]],
+                (1.0 - e1 / e0) if e0 > 0 else None)
+
+    after, split1, res_after, left, explained = with_model(
+        *((chosen.spec, chosen.x) if chosen else (None, None)))
     systematic_before = [q for q in QUANTITIES if res_before[q]["systematic"]]
     claims, unshrunk = [], []
     if chosen:
@@ -507,9 +554,6 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         claims = [q for q in systematic_before if per_q[q] > 0] or systematic_before
         k_of = {q: k for k, q in enumerate(QUANTITIES)}
         unshrunk = [QUANTITIES[k] for k in not_shrunk(split0, split1, [k_of[q] for q in claims])]
-    left = [q for q in QUANTITIES if res_after[q]["systematic"]]
-    e0, e1 = sum(split0["systematic_energy_mm2"]), sum(split1["systematic_energy_mm2"])
-    explained = (1.0 - e1 / e0) if e0 > 0 else None
     names = [c.effect for c in group]
     held_out = (validation_score(before[va], m_va, split0["noise_sigma_mm"]),
                 validation_score(after[va], m_va, split0["noise_sigma_mm"]))
@@ -525,7 +569,9 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         reason = (f"{', '.join(names)} explain the residual about equally: their cross-validated "
                   f"errors ({', '.join(f'{c.cv_mse_mm2:.3f}' for c in group)} mm^2) are within "
                   f"the noise of one another (sign-flip test of the per-row held-out losses, "
-                  f"p >= {config.alpha:g}); the data cannot tell them apart (the proposed "
+                  f"cross-validated and validation rows, p >= {config.alpha:g}; each improves "
+                  f"on the starting model at p < {config.alpha:g}); the data cannot tell them "
+                  f"apart (the proposed "
                   "samples below would)")
     elif chosen and worse_held_out:
         verdict = "none"
@@ -559,20 +605,22 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                   f"({top.cv_mse_mm2:.3f} against {cv0.score_mm2:.3f} mm^2) but not "
                   f"significantly against the starting model fitted equally well: "
                   f"p = {top.p_value:.2g} >= {threshold:.2g}")
+    estimate = None
+    if verdict == "named":
+        # the decision is made; what is reported and predicted is the best estimate of the
+        # named model (its strength profiled, every parameter refitted)
+        tested = evaluated(chosen.spec, ev, d_tr, m_fit, chosen.x, 0, "decided")
+        best, estimate = refine_estimate(tested, ev, d_tr, m_fit, max_nfev=config.fit_max_nfev)
+        estimate["effect_parameters"] = dict(zip(
+            best.spec.names[best.spec.offset:], best.spec.decode(best.x)[1][chosen.effect]))
+        estimate["parameters"] = dict(best.parameters)
+        after, split1, res_after, left, explained = with_model(chosen.spec, best.x)
     second = None
     if verdict == "named" and left and config.forward and len(config.effects) > 1:
         step(f"forward selection: a second effect after {chosen.effect}")
         second = _forward(chosen, screened_fit[chosen.effect], ev, d_tr, m_fit, labels, config)
         if second["significant"]:
-            after[tr] = ev.one(second["spec"], second["x"], d_tr)
-            after[va] = ev.one(second["spec"], second["x"], d_va)
-            split1 = smooth_split(d_all[tr], p_all[tr], m_tr - after[tr])
-            res_after = residual_analysis(d_all, p_all, measured - after, QUANTITIES,
-                                          alpha=config.alpha, permutations=config.permutations,
-                                          seed=config.seed)
-            left = [q for q in QUANTITIES if res_after[q]["systematic"]]
-            e1 = sum(split1["systematic_energy_mm2"])
-            explained = (1.0 - e1 / e0) if e0 > 0 else None
+            after, split1, res_after, left, explained = with_model(second["spec"], second["x"])
             reason += (f"; forward selection adds {second['effect']} (p = {second['p_value']:.2g}"
                        f" < {second['threshold']:.2g} against the model with {chosen.effect})")
         else:
@@ -603,7 +651,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         "verdict": verdict,
         "significant": verdict == "named",
         "indistinguishable": names if verdict == "indistinguishable" else [],
-        "effect_parameters": dict(chosen.effect_parameters) if verdict == "named" else {},
+        "effect_parameters": dict(estimate["effect_parameters"]) if estimate else {},
+        "estimate": estimate,
         "after_model": chosen.effect if chosen else None,
         "decision": reason,
         "ranking": [c.as_dict() for c in ranking],
