@@ -103,3 +103,8 @@ def test_demo_names_its_hidden_effect(tmp_path):
     assert doc["verdict"] == "named"
     assert doc["missing_effect"] == DEMO_SOURCE
     assert doc["after"]["r_a"]["mae_mm"] < doc["before"]["r_a"]["mae_mm"]
+    # the strength reported is the estimate refitted after the decision, and says so
+    est = doc["estimate"]
+    assert doc["effect_parameters"] == est["effect_parameters"]
+    assert est["train_mse_mm2"] <= est["train_mse_mm2_before"]
+    assert "estimate (refitted after the decision" in r.stdout

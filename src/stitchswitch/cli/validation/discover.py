@@ -161,6 +161,11 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
         names = " + ".join(rep["missing_effects"]) or name
         lines.append(f"missing effect: {names}" if name else "missing effect: none found")
     lines.append(f"  {rep['decision']}")
+    est = rep.get("estimate")
+    if est:
+        lines.append("  estimate (refitted after the decision, its strength profiled): " + ", ".join(
+            f"{k}={v:.4g}" for k, v in est["effect_parameters"].items())
+            + f"; training MSE {est['train_mse_mm2_before']:.3f} -> {est['train_mse_mm2']:.3f} mm^2")
     if rep.get("unexplained_residual"):
         lines.append("  an unexplained residual remains: " + ", ".join(rep["unexplained_residual"])
                      + " (map: residuals_after.png)")
