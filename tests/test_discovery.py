@@ -553,6 +553,49 @@ def test_proposal_picks_the_designs_where_the_models_differ_and_spreads_them():
     assert len(parse_measurements(filled, "t.csv").split("train")) == 3
 
 
+def test_proposal_skips_a_difference_the_branch_choice_removes():
+    """Where model b also has an equilibrium at a's prediction (bistable there), the
+    difference does not survive the branch choice the measured row makes: the proposal goes
+    where the models differ on every equilibrium they reach."""
+    from stitchswitch.validation.discovery.proposal import (
+        design_grid,
+        propose,
+        surviving_difference,
+    )
+
+    grid = design_grid(6, 5)
+    d = np.array([g[0] for g in grid])
+    a = np.zeros((len(grid), 5))
+    b = a.copy()
+    b[:, 0] = np.where(d == 100.0, 6.0, 0.0) + np.where(d == 15.0, 2.0, 0.0)
+    b_from_a = b.copy()
+    b_from_a[d == 100.0] = a[d == 100.0]          # b reaches a's state at d = 100 mm
+    sigma = np.ones(5)
+    diff = surviving_difference(a, b, sigma, alt_b=[b_from_a])
+    assert np.all(diff[d == 100.0] == 0.0) and np.all(diff[d == 15.0, 0] == -2.0)
+    assert propose({"a": a, "b": b}, grid, sigma, k=1)["designs"][0]["d_mm"] == 100.0
+    out = propose({"a": a, "b": b}, grid, sigma, k=1, reach={("b", "a"): b_from_a})
+    assert out["designs"][0]["d_mm"] == 15.0
+    assert out["separation"][0]["d_mm"] == 15.0 and out["separation"][0]["sigmas"] == 2.0
+
+
+def test_the_proposal_reaches_each_model_from_the_others_equilibrium():
+    """``reachable``: a model warm-started from its own equilibrium stays there, so a model
+    paired with itself (two labels) has no surviving difference anywhere."""
+    from stitchswitch.validation.discovery.proposal import reachable, surviving_difference
+
+    spec = ModelSpec(START)
+    x = spec.encode(START)
+    designs = [(30.0, 0.8), (70.0, 1.0)]
+    ev = Evaluator()
+    reach = reachable(ev, [("a", spec, x), ("b", spec, x)], designs)
+    assert set(reach) == {("a", "b"), ("b", "a")}
+    cold = ev.one(spec, x, designs)
+    assert np.allclose(reach["a", "b"], cold, atol=1e-6)
+    assert np.allclose(surviving_difference(cold, cold, np.ones(5), [reach["a", "b"]],
+                                            [reach["b", "a"]]), 0.0, atol=1e-6)
+
+
 def test_proposal_discounts_a_difference_the_refitted_rival_can_absorb():
     from stitchswitch.validation.discovery.proposal import ModelView, design_grid, propose
 

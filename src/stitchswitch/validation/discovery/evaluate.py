@@ -189,6 +189,14 @@ class Evaluator:
         return [np.array([self.warm[(ckey,) + self._key(spec, x, d)] for d in designs])
                 for x in xs]
 
+    def from_states(self, spec, x, designs, states) -> np.ndarray:
+        """(n, 5) keypoints of ``spec`` at ``x``, each design warm-started from the matching
+        equilibrium of ``states`` (another model's, typically): where this model has an
+        equilibrium near that state, it is the one found (not cached)."""
+        material, active = spec.decode(x)
+        items = [(float(d[0]), float(d[1]), material, active, st) for d, st in zip(designs, states)]
+        return np.array([kp for kp, *_ in self._run(items)])
+
     def continued(self, spec, path, designs) -> list[tuple[np.ndarray, list]]:
         """[(keypoints (n, 5), solutions)] along ``path`` (a sequence of x): each design starts
         from its equilibrium at ``path[0]`` (``solution``) and is warm-started at every next

@@ -24,6 +24,13 @@ The k designs are picked greedily: each next one the largest gain of the discrim
 set, scaled by 1 - exp(-r^2 / (2 l^2)), r its distance in the unit square of (d, p) to the
 nearest chosen design (l = ``SPREAD``), so the samples spread over the space.
 
+**Branches.** Where a design is bistable, a model's cold solve may sit on one equilibrium while
+it has another near the rival's: once the design is measured, the workflow evaluates it on the
+equilibrium nearest the row (``evaluate``, branch states), and the difference vanishes. So each
+model is also solved warm-started from the rival's equilibrium at every candidate design
+(``reachable``), and a pair's difference at a design is the smallest over the equilibria each
+model reaches there: the difference that survives the branch choice.
+
 ``separation(...)`` gives, for each pair, the design that separates it best and by how many
 sigma. ``template_csv`` writes the proposal in the measured-data format (``validation.measured``)
 with the keypoint columns left blank, to be filled in after fabrication.
@@ -38,7 +45,7 @@ import numpy as np
 from stitchswitch.validation.measured import REQUIRED_COLUMNS
 
 __all__ = ["design_grid", "SPREAD", "PRIOR", "ModelView", "model_view", "predictions",
-           "propose", "template_csv"]
+           "reachable", "surviving_difference", "propose", "template_csv"]
 
 SPREAD = 0.2
 #: Prior precision (per search unit squared) that keeps the parameter covariance finite along
@@ -87,6 +94,27 @@ def predictions(ev, models, designs) -> dict:
     return {label: ev.one(spec, x, designs) for label, spec, x in models}
 
 
+def reachable(ev, models, designs) -> dict:
+    """{(a, b): (n, 5)}: model ``a`` at ``designs`` warm-started from model ``b``'s equilibria
+    there, for every ordered pair of ``models`` ((label, spec, x)): the equilibrium of ``a``
+    nearest ``b``'s, where it has one."""
+    states = {label: [ev.solution(spec, x, d) for d in designs] for label, spec, x in models}
+    return {(a, b): ev.from_states(spec, x, designs, states[b])
+            for a, spec, x in models for b, *_ in models if a != b}
+
+
+def surviving_difference(pred_a, pred_b, sigma, alt_a=(), alt_b=()) -> np.ndarray:
+    """(n, 5) difference a - b at each design taken between the equilibria (``pred`` and the
+    ``alt`` ones) of each model that are nearest each other there (smallest sum of squared
+    sigma-scaled differences)."""
+    A = np.stack([pred_a, *alt_a])
+    B = np.stack([pred_b, *alt_b])
+    d = A[:, None] - B[None, :]
+    flat = d.reshape(-1, *d.shape[2:])
+    k = np.argmin(np.sum((flat / sigma) ** 2, axis=-1), axis=0)
+    return flat[k, np.arange(flat.shape[1])]
+
+
 def _unit(designs) -> np.ndarray:
     a = np.asarray(designs, dtype=float)
     return np.column_stack([(a[:, 0] - D_RANGE_MM[0]) / (D_RANGE_MM[1] - D_RANGE_MM[0]),
@@ -104,11 +132,13 @@ def _unavoidable(delta, rival: ModelView, rows, sigma) -> float:
     return float(d @ np.linalg.solve(S, d))
 
 
-def propose(views: dict, designs, sigma_mm, k: int = 5) -> dict:
+def propose(views: dict, designs, sigma_mm, k: int = 5, reach: dict | None = None) -> dict:
     """{"designs": [{"d_mm", "fill", "discrimination", "gain", "pairs": {a|b: chi2}}] (k, in
     the order chosen; ``discrimination``: of the set so far, ``gain``: what this design added,
     ``pairs``: the raw difference of each pair there), "separation": [{"models", "d_mm",
-    "fill", "sigmas"}]} from {label: ``ModelView`` or (n, 5) keypoints}."""
+    "fill", "sigmas"}]} from {label: ``ModelView`` or (n, 5) keypoints}; ``reach``: the
+    equilibria each model reaches from the other's (``reachable``), for the difference that
+    survives the branch choice (``surviving_difference``)."""
     views = {a: (v if isinstance(v, ModelView) else ModelView(np.asarray(v, dtype=float)))
              for a, v in views.items()}
     labels = list(views)
@@ -116,7 +146,11 @@ def propose(views: dict, designs, sigma_mm, k: int = 5) -> dict:
     pairs = list(itertools.combinations(labels, 2))
     if not pairs:
         return {"designs": [], "separation": []}
-    delta = {(a, b): views[a].pred - views[b].pred for a, b in pairs}
+    reach = reach or {}
+    delta = {(a, b): surviving_difference(
+        views[a].pred, views[b].pred, sigma,
+        [reach[a, b]] if (a, b) in reach else (), [reach[b, a]] if (b, a) in reach else ())
+        for a, b in pairs}
     chi = {f"{a}|{b}": np.sum((delta[a, b] / sigma) ** 2, axis=1) for a, b in pairs}
 
     def score(rows):

@@ -398,7 +398,12 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     """Run the workflow on ``data`` from the starting material ``start``; see the module
     docstring. ``executor``: a map-like for parallel solves. ``progress(message, stage,
     total)`` is called as each stage starts."""
-    from stitchswitch.validation.discovery.proposal import design_grid, model_view, propose
+    from stitchswitch.validation.discovery.proposal import (
+        design_grid,
+        model_view,
+        propose,
+        reachable,
+    )
     from stitchswitch.validation.discovery.residuals import not_shrunk, smooth_split
 
     t0 = time.perf_counter()
@@ -640,7 +645,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     views = {label: model_view(ev, spec, x, grid, d_tr, sigma,
                                replace(spec, start=screen.start))
              for label, spec, x in models} if config.propose else {}
-    proposal = propose(views, grid, sigma, config.propose)
+    reach = reachable(ev, models, grid) if config.propose else None
+    proposal = propose(views, grid, sigma, config.propose, reach)
     summary = {
         "missing_effect": chosen.effect if verdict == "named" else None,
         "missing_effects": ([chosen.effect] + ([second["effect"]] if second and
