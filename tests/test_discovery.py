@@ -724,11 +724,22 @@ def test_forward_selection_finds_the_second_hidden_effect():
     first = SimpleNamespace(spec=spec, x=f.x, effect="prestretch_loss")
     config = DiscoveryConfig(effects=("prestretch_loss", "hoop_bending"), folds=3, fit_max_nfev=8,
                              cv_max_nfev=2, scan_points=3, permutations=300)
-    out = _forward(first, f, ev, d_tr, m_tr, fold_labels(d_tr, 3, 0), config)
+    m_va = np.maximum(np.round(noisy, 2), 0.1)[len(d_tr):]
+    sigma = 0.3 * np.array(SIGMA_MM)
+    labels = fold_labels(d_tr, 3, 0)
+    out = _forward(first, f, ev, d_tr, m_tr, labels, config, held_out=(d_va, m_va, sigma))
     assert out["effect"] == "hoop_bending" and out["significant"]
     assert out["p_value"] < out["threshold"] == pytest.approx(0.05)
     assert out["cv_mse_mm2"] < out["cv_mse_first_only_mm2"]
+    assert out["validation_score"] < out["validation_score_first_only"]
     assert out["parameters"]["H"] > 1.0
+    # the held-out veto: validation rows the first model predicts exactly cannot be predicted
+    # better by adding the second, which is then not significant whatever its F test and CV
+    exact = ev.one(spec, f.x, d_va)
+    vetoed = _forward(first, f, ev, d_tr, m_tr, labels, config, held_out=(d_va, exact, sigma))
+    assert vetoed["p_value"] < vetoed["threshold"] and vetoed["cv_mse_mm2"] < vetoed["cv_mse_first_only_mm2"]
+    assert vetoed["validation_score_first_only"] == 0.0 < vetoed["validation_score"]
+    assert not vetoed["significant"]
 
 
 def test_forward_selection_skips_the_cross_validations_of_a_second_effect_that_cannot_pass():

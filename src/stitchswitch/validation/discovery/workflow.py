@@ -327,7 +327,7 @@ def rivals(top, ranking, cv0_score_mm2: float, alpha: float, seed: int = 0) -> l
     return [c for c in ranking if c is not top and c.effect in close]
 
 
-def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
+def _forward(first, first_screen, ev, d_tr, m_fit, labels, config, held_out=None) -> dict:
     """The best second effect after ``first`` (a refined ``Candidate``): the ``FORWARD_FITS``
     other effects whose unabsorbed signature correlates best with the residual left by
     ``first_screen`` (its screening-resolution fit) screened on top of it, the best one polished
@@ -336,7 +336,9 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
     second effect is fitted from the better of its two starts. The test is checked before the
     re-polish (which can only lower the first model's RSS) and after it; a second effect that
     fails it is returned without cross-validations (``cv_mse_mm2`` None): the CV cannot make
-    it pass."""
+    it pass. ``held_out``: (validation designs, their rows, noise sigma per keypoint); a second
+    effect that passes must also predict them no worse than the model with ``first`` alone
+    (``cv.validation_score``), the veto the first effect faces too."""
     from stitchswitch.validation.discovery.fit import Fit
 
     rss = lambda f: float(np.sum((f.predictions - m_fit) ** 2))      # noqa: E731
@@ -373,7 +375,8 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
     zero = _zero(spec_f, ff.x)
     out = {"effect": name, "after": first.effect, "threshold": threshold, "zero_strength": zero,
            "parameters": spec_f.describe(ff.x), "spec": spec_f, "x": ff.x}
-    rejected = {"cv_mse_mm2": None, "cv_mse_first_only_mm2": None, "significant": False}
+    rejected = {"cv_mse_mm2": None, "cv_mse_first_only_mm2": None, "validation_score": None,
+                "validation_score_first_only": None, "significant": False}
     if zero or not passes(rss(fit_a), ff):
         # cannot pass: the equal-footing re-polish only lowers the first model's RSS, so the
         # test fails whatever the cross-validations say; they are not run
@@ -388,9 +391,17 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config) -> dict:
         return {**out, "f_statistic": F, "p_value": p, **rejected}
     cv_a = cross_validate(base_f, ev, d_tr, m_fit, fit_a.x, labels, max_nfev=config.cv_max_nfev)
     cv_f = cross_validate(spec_f, ev, d_tr, m_fit, ff.x, labels, max_nfev=config.cv_max_nfev)
+    scores = None
+    if held_out is not None and len(held_out[0]):
+        d_va, m_va, sigma = held_out
+        scores = (validation_score(ev.one(base_f, first.x, d_va), m_va, sigma),
+                  validation_score(ev.one(spec_f, ff.x, d_va), m_va, sigma))
     return {**out, "f_statistic": F, "p_value": p, "cv_mse_mm2": cv_f.score_mm2,
             "cv_mse_first_only_mm2": cv_a.score_mm2,
-            "significant": bool(cv_f.score_mm2 < cv_a.score_mm2)}
+            "validation_score": None if scores is None else scores[1],
+            "validation_score_first_only": None if scores is None else scores[0],
+            "significant": bool(cv_f.score_mm2 < cv_a.score_mm2
+                                and (scores is None or scores[1] <= scores[0]))}
 
 
 def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = DiscoveryConfig(), *,
@@ -623,11 +634,20 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     second = None
     if verdict == "named" and left and config.forward and len(config.effects) > 1:
         step(f"forward selection: a second effect after {chosen.effect}")
-        second = _forward(chosen, screened_fit[chosen.effect], ev, d_tr, m_fit, labels, config)
+        second = _forward(chosen, screened_fit[chosen.effect], ev, d_tr, m_fit, labels, config,
+                          held_out=(d_va, m_va, split0["noise_sigma_mm"]))
         if second["significant"]:
             after, split1, res_after, left, explained = with_model(second["spec"], second["x"])
             reason += (f"; forward selection adds {second['effect']} (p = {second['p_value']:.2g}"
                        f" < {second['threshold']:.2g} against the model with {chosen.effect})")
+        elif (second.get("validation_score") is not None
+              and second["cv_mse_mm2"] < second["cv_mse_first_only_mm2"]
+              and second["validation_score"] > second["validation_score_first_only"]):
+            reason += (f"; forward selection: {second['effect']} passes the F test (p = "
+                       f"{second['p_value']:.2g}) and the cross-validation but predicts the "
+                       f"validation rows worse (noise-weighted MAE "
+                       f"{second['validation_score_first_only']:.2f} -> "
+                       f"{second['validation_score']:.2f}): not added")
         else:
             reason += (f"; forward selection: no significant second effect (best "
                        f"{second['effect']}, p = {second['p_value']:.2g})")
