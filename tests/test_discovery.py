@@ -728,7 +728,7 @@ def test_forward_selection_finds_the_second_hidden_effect():
     sigma = 0.3 * np.array(SIGMA_MM)
     labels = fold_labels(d_tr, 3, 0)
     out = _forward(first, f, ev, d_tr, m_tr, labels, config, held_out=(d_va, m_va, sigma))
-    assert out["effect"] == "hoop_bending" and out["significant"]
+    assert out["effect"] == "hoop_bending" and out["significant"] and not out["vetoed"]
     assert out["p_value"] < out["threshold"] == pytest.approx(0.05)
     assert out["cv_mse_mm2"] < out["cv_mse_first_only_mm2"]
     assert out["validation_score"] < out["validation_score_first_only"]
@@ -739,7 +739,7 @@ def test_forward_selection_finds_the_second_hidden_effect():
     vetoed = _forward(first, f, ev, d_tr, m_tr, labels, config, held_out=(d_va, exact, sigma))
     assert vetoed["p_value"] < vetoed["threshold"] and vetoed["cv_mse_mm2"] < vetoed["cv_mse_first_only_mm2"]
     assert vetoed["validation_score_first_only"] == 0.0 < vetoed["validation_score"]
-    assert not vetoed["significant"]
+    assert not vetoed["significant"] and vetoed["vetoed"]
 
 
 def test_forward_selection_skips_the_cross_validations_of_a_second_effect_that_cannot_pass():

@@ -275,6 +275,13 @@ def _zero(spec, x) -> bool:
     return all(abs(v) <= 1e-6 * p.probe for v, p in zip(values, spec.effect_parameters))
 
 
+def _effect_values(spec, x, name: str) -> dict:
+    """Effect ``name``'s parameter values in ``x``, by parameter name (zeros where ``spec``
+    does not carry the effect)."""
+    return dict(zip(spec.names[spec.offset:], spec.decode(x)[1].get(
+        name, (0.0,) * len(spec.effect_parameters))))
+
+
 def _candidate(name, spec, f, m_tr, cv, cv0, why, how, rss0, k0, m, config, ev, d_va, m_va,
                before_va, refined):
     """The ``Candidate`` of fit ``f`` (with its cross-validation ``cv``) against the starting
@@ -291,8 +298,7 @@ def _candidate(name, spec, f, m_tr, cv, cv0, why, how, rss0, k0, m, config, ev, 
         significant=bool(refined and not zero and p < config.alpha / m
                          and cv.score_mm2 < cv0.score_mm2),
         n_parameters=spec.size, parameters=dict(f.parameters),
-        effect_parameters=dict(zip(spec.names[spec.offset:], spec.decode(f.x)[1].get(
-            name, (0.0,) * len(spec.effect_parameters)))),
+        effect_parameters=_effect_values(spec, f.x, name),
         val_mae_before_mm={q: v["mae_mm"] for q, v in _metrics(before_va, m_va).items()},
         val_mae_after_mm={q: v["mae_mm"] for q, v in _metrics(pred_va, m_va).items()},
         signature=why, uncertified_solves=f.uncertified, fit_start=how,
@@ -376,7 +382,7 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config, held_out=None
     out = {"effect": name, "after": first.effect, "threshold": threshold, "zero_strength": zero,
            "parameters": spec_f.describe(ff.x), "spec": spec_f, "x": ff.x}
     rejected = {"cv_mse_mm2": None, "cv_mse_first_only_mm2": None, "validation_score": None,
-                "validation_score_first_only": None, "significant": False}
+                "validation_score_first_only": None, "significant": False, "vetoed": False}
     if zero or not passes(rss(fit_a), ff):
         # cannot pass: the equal-footing re-polish only lowers the first model's RSS, so the
         # test fails whatever the cross-validations say; they are not run
@@ -396,12 +402,13 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config, held_out=None
         d_va, m_va, sigma = held_out
         scores = (validation_score(ev.one(base_f, first.x, d_va), m_va, sigma),
                   validation_score(ev.one(spec_f, ff.x, d_va), m_va, sigma))
+    cv_better = cv_f.score_mm2 < cv_a.score_mm2
+    vetoed = bool(cv_better and scores is not None and scores[1] > scores[0])
     return {**out, "f_statistic": F, "p_value": p, "cv_mse_mm2": cv_f.score_mm2,
             "cv_mse_first_only_mm2": cv_a.score_mm2,
             "validation_score": None if scores is None else scores[1],
             "validation_score_first_only": None if scores is None else scores[0],
-            "significant": bool(cv_f.score_mm2 < cv_a.score_mm2
-                                and (scores is None or scores[1] <= scores[0]))}
+            "significant": bool(cv_better and not vetoed), "vetoed": vetoed}
 
 
 def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = DiscoveryConfig(), *,
@@ -587,8 +594,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                   f"the noise of one another (sign-flip test of the per-row held-out losses, "
                   f"cross-validated and validation rows, p >= {config.alpha:g}; each improves "
                   f"on the starting model at p < {config.alpha:g}); the data cannot tell them "
-                  f"apart (the proposed "
-                  "samples below would)")
+                  "apart (the proposed samples below would)")
     elif chosen and worse_held_out:
         verdict = "none"
         reason = (f"{top.effect} lowers the cross-validated error ({top.cv_mse_mm2:.3f} against "
@@ -627,8 +633,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         # named model (its strength profiled, every parameter refitted)
         tested = evaluated(chosen.spec, ev, d_tr, m_fit, chosen.x, 0, "decided")
         best, estimate = refine_estimate(tested, ev, d_tr, m_fit, max_nfev=config.fit_max_nfev)
-        estimate["effect_parameters"] = dict(zip(
-            best.spec.names[best.spec.offset:], best.spec.decode(best.x)[1][chosen.effect]))
+        estimate["effect_parameters"] = _effect_values(best.spec, best.x, chosen.effect)
         estimate["parameters"] = dict(best.parameters)
         after, split1, res_after, left, explained = with_model(chosen.spec, best.x)
     second = None
@@ -640,9 +645,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
             after, split1, res_after, left, explained = with_model(second["spec"], second["x"])
             reason += (f"; forward selection adds {second['effect']} (p = {second['p_value']:.2g}"
                        f" < {second['threshold']:.2g} against the model with {chosen.effect})")
-        elif (second.get("validation_score") is not None
-              and second["cv_mse_mm2"] < second["cv_mse_first_only_mm2"]
-              and second["validation_score"] > second["validation_score_first_only"]):
+        elif second["vetoed"]:
             reason += (f"; forward selection: {second['effect']} passes the F test (p = "
                        f"{second['p_value']:.2g}) and the cross-validation but predicts the "
                        f"validation rows worse (noise-weighted MAE "
