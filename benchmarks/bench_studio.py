@@ -8,11 +8,11 @@ Measured from the browser (Debian's chromium driven by Playwright, tests/studio_
   (the page is interactive: its handlers are bound and the state has arrived; the server is
   already running, its own start (imports, map load, first check and scene) is reported as
   ``server_start``); ``first_scene``: until the 3D view has its first scene as well;
-* ``slider_readout``: one step of the fill slider until the page shows the new readout (sent
-  before the check and the scene are recomputed);
-* ``slider``: one step of the fill slider (a key press on its thumb) until the page has both
-  the new readout and the 3D view's new geometry (a stamp the server sends after the view's
-  data, so it arrives after it on the same websocket), with the server's share of it:
+* ``slider_readout``: one step of the fill slider (a key press on its thumb) until the page
+  shows the new readout (sent before the check and the scene are recomputed);
+* ``slider``: the same step until the 3D view has the new scene (a stamp the server sends
+  after the view's data, and the view's own update: vtk.js's scene loaded, or the pushed
+  image loaded when the server renders the view), with the server's share of it:
   ``check``, ``scene`` (``preview3d.scene.build_scene`` of the whole design) and ``view_send``
   (serializing the VTK scene for the browser);
 * ``slider_check``: the same step until the check panel shows the new check;
@@ -26,10 +26,16 @@ values, as the benchmark did before: from the third step on the page then has bo
 arrays in vtk.js's cache and fetches none, and the server's check and profile caches hold
 them too (a lighter step than a user's).
 
-* ``slider_drawn`` (the target's step): the same step until the frame with the new WebGL
-  image has been produced (one animation frame after ``slider``'s end; the render itself
-  happens after vtk.js's scene-loaded event); ``kB received`` and ``renders``: the websocket
-  bytes the page received (DevTools) and its WebGL renders (clears of the canvas) per step.
+* ``slider_drawn`` (the target's step): the same step until the frame with the new picture
+  has been produced (two animation frames after ``slider``'s end: the WebGL render happens
+  after vtk.js's scene-loaded event, an image is painted in the frame after its load);
+  ``kB received`` and ``renders``: the websocket bytes the page received (DevTools) and its
+  WebGL renders (clears of the canvas) per step.
+
+A slider step's readout, check panel and 3D view are watched together in the page
+(``WATCH_STEP``), each stamped when it first shows the step, on the clock Python's
+``time.time`` reads, from just before the key press: one that arrives later does not delay
+another's stamp.
 
 * ``frame_floor``: the least a step's drawn frame can cost here: the page draws the view's
   unchanged scene again (no server, no new arrays: one vtk.js render) until the frame with it
@@ -46,9 +52,13 @@ only the changed parts are rebuilt), ``sync`` (the pyvista actors of the changed
 wall time and, with the suffix ``cpu``, as the server process's CPU time; ``browser task``:
 the page's main-thread task time over the whole step (``BrowserTime``), the browser's share.
 
+``--view browser|server`` measures the 3D view drawn by the browser's WebGL or rendered on the
+server (``stitchswitch studio --view``; default ``auto``, as the studio chooses).
+``frame_floor`` is measured for the WebGL view only.
+
 The machine is shared: the 1-minute load average is printed with the figures.
 
-    python benchmarks/bench_studio.py [--runs N] [--alternate] [--json]
+    python benchmarks/bench_studio.py [--runs N] [--alternate] [--view MODE] [--json]
 """
 from __future__ import annotations
 
@@ -68,7 +78,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "src"))
 
 from bench_preview import design_40  # noqa: E402
 from stitchswitch.studio.app import VIEW_REF  # noqa: E402
-from studio_driver import browser, studio_server, to_px  # noqa: E402
+from studio_driver import VIEW_UPDATES, browser, studio_server, to_px, view_mode  # noqa: E402
 
 #: the pause before each step, so that the view's deferred full state (``view_channel``) and
 #: the previous step's frame are done and do not fall into the step measured
@@ -124,17 +134,47 @@ def _renders(page) -> int:
 
 
 def _loads(page) -> int:
-    return int(page.evaluate("window.studioSceneLoads || 0"))
+    return int(page.evaluate(VIEW_UPDATES[view_mode(page)]))
 
 
 def _wait_scene(page, above: int, loads: int) -> None:
     """Until the 3D view shows edit ``above + 1`` or later: the server has sent its scene (the
-    scene stamp follows the view's data on the websocket), and the view has synchronized since
-    ``loads`` and is not synchronizing any more (vtk.js's afterSceneLoaded: arrays fetched)."""
+    scene stamp follows the view's data on the websocket), and the view has updated since
+    ``loads`` and is not synchronizing any more (the browser's WebGL: vtk.js's
+    afterSceneLoaded, arrays fetched; rendered on the server: the image pushed after the edit
+    has loaded)."""
+    mode = view_mode(page)
+    busy = " && !window.studioSceneBusy" if mode == "browser" else ""
     page.wait_for_function(
         f"Number(document.querySelector('#scene-stamp').textContent) > {above} && "
-        f"(window.studioSceneLoads || 0) > {loads} && !window.studioSceneBusy",
-        polling="raf", timeout=30000)
+        f"{VIEW_UPDATES[mode]} > {loads}{busy}", polling="raf", timeout=30000)
+
+
+#: watches one step in the page: every animation frame it checks whether the readout, the
+#: check panel and the 3D view show the edit after ``before`` (the view: ``loads`` exceeded and
+#: the scene stamp, as ``_wait_scene``), stamps each the first time it does (ms since the epoch,
+#: the clock Python's ``time.time`` reads too) and the 3D view's frame as drawn two animation
+#: frames after it is loaded (as ``NEXT_FRAME``); ``window.studioMarks.done`` when all are in.
+#: The conditions are watched together, so one that comes later (a check sent after the
+#: view) does not delay another's stamp.
+WATCH_STEP = """([before, loadsExpr, loads, busy]) => {
+  const now = () => performance.timeOrigin + performance.now();
+  const num = sel => Number(document.querySelector(sel).textContent);
+  const loaded = new Function('return ' + loadsExpr);
+  const marks = window.studioMarks = {};
+  const poll = () => {
+    if (!marks.readout && num('#readout-stamp') > before) marks.readout = now();
+    if (!marks.check && num('#edits') > before) marks.check = now();
+    if (!marks.scene && num('#scene-stamp') > before && loaded() > loads
+        && !(busy && window.studioSceneBusy)) {
+      marks.scene = now();
+      requestAnimationFrame(() => requestAnimationFrame(() => { marks.drawn = now(); }));
+    }
+    if (marks.readout && marks.check && marks.drawn) marks.done = true;
+    else requestAnimationFrame(poll);
+  };
+  requestAnimationFrame(poll);
+}"""
 
 
 class Received:
@@ -169,7 +209,7 @@ class BrowserTime:
         return next(m["value"] for m in metrics if m["name"] == "TaskDuration")
 
 
-def measure(runs: int, alternate: bool = False) -> dict:
+def measure(runs: int, alternate: bool = False, where: str = "auto") -> dict:
     from stitchswitch.layout.garment.design_io import load_design
     from stitchswitch.studio.canvas import view_of
 
@@ -179,7 +219,7 @@ def measure(runs: int, alternate: bool = False) -> dict:
         design = load_design(path)
         view = view_of(design)
         t0 = time.perf_counter()
-        with studio_server(path) as (url, _):
+        with studio_server(path, view=where) as (url, _):
             server_start = time.perf_counter() - t0
             with browser() as ctx:
                 page = ctx.new_page()
@@ -189,6 +229,8 @@ def measure(runs: int, alternate: bool = False) -> dict:
                 page.wait_for_function("document.querySelectorAll('#canvas circle').length == 40",
                                        polling="raf", timeout=60000)
                 first_load = time.perf_counter() - t1
+                page.wait_for_selector("#view-mode-key", state="attached")
+                mode = view_mode(page)
                 _wait_scene(page, -1, 0)
                 first_scene = time.perf_counter() - t1
                 p = design.patches[0]
@@ -203,22 +245,21 @@ def measure(runs: int, alternate: bool = False) -> dict:
                     time.sleep(SETTLE_S)
                     before, loads = _stamp(page, "#edits"), _loads(page)
                     b0, r0, n0 = task(), received.bytes, _renders(page)
-                    t = time.perf_counter()
+                    page.evaluate(WATCH_STEP, [before, VIEW_UPDATES[mode], loads, mode == "browser"])
+                    t = time.time()
                     page.keyboard.press("ArrowLeft" if alternate and k % 2 else "ArrowRight")
-                    _wait_stamp(page, "#readout-stamp", before)
-                    readout.append(time.perf_counter() - t)
-                    _wait_stamp(page, "#edits", before)
-                    check.append(time.perf_counter() - t)
-                    _wait_scene(page, before, loads)
-                    slider.append(time.perf_counter() - t)
-                    page.evaluate(NEXT_FRAME)
-                    drawn.append(time.perf_counter() - t)
+                    page.wait_for_function("window.studioMarks.done === true", timeout=30000)
+                    marks = page.evaluate("window.studioMarks")
+                    readout.append(marks["readout"] / 1000.0 - t)
+                    check.append(marks["check"] / 1000.0 - t)
+                    slider.append(marks["scene"] / 1000.0 - t)
+                    drawn.append(marks["drawn"] / 1000.0 - t)
                     slider_task.append(task() - b0)
                     kbytes.append((received.bytes - r0) / 1000.0)
                     renders.append(_renders(page) - n0)
                     server.append(json.loads(page.locator("#timings").inner_text()))
                 floor, floor_idle = [], []
-                for _ in range(runs):
+                for _ in range(runs if mode == "browser" else 0):     # the WebGL frame
                     time.sleep(SETTLE_S)
                     render_ms, idle_ms = page.evaluate(FRAME_FLOOR % VIEW_REF)
                     if render_ms is not None:
@@ -249,13 +290,13 @@ def measure(runs: int, alternate: bool = False) -> dict:
               for k in slider_rows[0] if k.endswith("_s")}
     move_phases = {f"  server {k[:-2]}": [row[k] / 1000.0 for row in move_rows]
                    for k in move_rows[0] if k.endswith("_s")}
-    return {"server_start": [server_start], "first_load": [first_load],
+    return {"view_mode": mode, "server_start": [server_start], "first_load": [first_load],
             "first_scene": [first_scene], "slider_readout": readout,
             "slider_check": check, "slider": slider, "slider_drawn": drawn,
             "  browser task (slider)": slider_task, "  kB received (slider)": kbytes,
             "  renders (slider)": renders,
             "frame_floor": floor or [float("nan")],
-            "  next frame, no render": floor_idle,
+            "  next frame, no render": floor_idle or [float("nan")],
             **phases, "move": move, "move_3d": move_3d, "  browser task (move)": move_task,
             **{k + " (move)": v for k, v in move_phases.items()}}
 
@@ -284,6 +325,8 @@ def main(argv=None) -> int:
     ap.add_argument("--runs", type=int, default=30)
     ap.add_argument("--alternate", action="store_true",
                     help="slider steps back and forth between two values (cached arrays)")
+    ap.add_argument("--view", default="auto", choices=("auto", "browser", "server"),
+                    help="where the 3D view is drawn (stitchswitch studio --view)")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args(argv)
     if not args.alternate and not 1 <= args.runs <= MAX_ONE_WAY_RUNS:
@@ -291,12 +334,15 @@ def main(argv=None) -> int:
                  "1.0), or --alternate")
     # a terminated benchmark unwinds like Ctrl-C, so the studio server it started is stopped
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
-    rows = summary(measure(args.runs, args.alternate))
+    samples = measure(args.runs, args.alternate, args.view)
+    mode = samples.pop("view_mode")
+    rows = summary(samples)
     load = os.getloadavg()[0]
     if args.json:
-        print(json.dumps({"rows": rows, "loadavg_1min": load, "alternate": args.alternate},
-                         indent=2))
+        print(json.dumps({"rows": rows, "loadavg_1min": load, "alternate": args.alternate,
+                          "view_mode": mode}, indent=2))
         return 0
+    print(f"3D view: {'rendered on the server' if mode == 'server' else 'WebGL in the browser'}")
     print(f"{'step':<30}{'runs':>5}{'median ms':>11}{'p95 ms':>9}{'target ms':>11}  meets")
     for r in rows:
         tgt = "" if r["target_s"] is None else f"{1000 * r['target_s']:.0f}"

@@ -24,16 +24,44 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
+#: counts the images the server-rendered 3D view has loaded (``window.studioImageLoads``):
+#: trame-vtk's remote view shows each pushed image in an ``img`` inside ``#view3d``
+COUNT_VIEW_IMAGES = """(() => {
+  const src = Object.getOwnPropertyDescriptor(HTMLImageElement.prototype, 'src');
+  Object.defineProperty(HTMLImageElement.prototype, 'src', {
+    configurable: true,
+    get() { return src.get.call(this); },
+    set(value) {
+      this.addEventListener('load', () => {
+        if (this.closest('#view3d')) window.studioImageLoads = (window.studioImageLoads || 0) + 1;
+      }, {once: true});
+      src.set.call(this, value);
+    }});
+})();"""
+
+
+#: the page's count of the 3D view's updates, by where it is drawn: vtk.js's scene loads
+#: (WebGL in the browser, counted by the page) or the images the server pushed
+#: (``COUNT_VIEW_IMAGES``)
+VIEW_UPDATES = {"browser": "(window.studioSceneLoads || 0)",
+                "server": "(window.studioImageLoads || 0)"}
+
+
+def view_mode(page) -> str:
+    """Where the page's 3D view is drawn: ``browser`` or ``server``."""
+    return page.locator("#view-mode-key").text_content()
+
+
 @contextlib.contextmanager
-def studio_server(design_path, timeout_s: float = 60.0):
-    """The URL of a running ``stitchswitch studio DESIGN --no-browser``; stopped with SIGINT
-    (Ctrl-C) at the end, which must end it cleanly."""
+def studio_server(design_path, timeout_s: float = 60.0, view: str = "auto"):
+    """The URL of a running ``stitchswitch studio DESIGN --no-browser --view VIEW``; stopped
+    with SIGINT (Ctrl-C) at the end, which must end it cleanly."""
     port = free_port()
     env = dict(os.environ)
     src = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "src")
     env["PYTHONPATH"] = src + os.pathsep + env.get("PYTHONPATH", "")
     proc = subprocess.Popen([sys.executable, "-m", "stitchswitch", "studio", os.fspath(design_path),
-                             "--no-browser", "--port", str(port)], env=env,
+                             "--no-browser", "--port", str(port), "--view", view], env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     url = f"http://127.0.0.1:{port}/"
     deadline = time.monotonic() + timeout_s
@@ -74,6 +102,7 @@ def browser(size=(1400, 850)):
             ctx = p.chromium.launch_persistent_context(profile, executable_path=CHROMIUM, args=ARGS,
                                                        headless=True,
                                                        viewport={"width": size[0], "height": size[1]})
+            ctx.add_init_script(COUNT_VIEW_IMAGES)
             try:
                 yield ctx
             finally:

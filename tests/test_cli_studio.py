@@ -54,3 +54,10 @@ def test_size_needs_a_pattern(tmp_path):
     save_design(Design(1, (rectangle_piece(300.0, 200.0),), ()), path)
     one_error(run(str(path), "--size", "36", "--no-browser"), "--size")
     assert not (tmp_path / "n.json").exists()
+
+
+def test_an_unknown_view_mode(tmp_path):
+    path = tmp_path / "d.json"
+    save_design(Design(1, (rectangle_piece(300.0, 200.0),), ()), path)
+    one_error(run(str(path), "--view", "gpu", "--no-browser"), "--view", "gpu")
+    assert not (tmp_path / "d.json.autosave.json").exists()

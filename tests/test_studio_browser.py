@@ -24,7 +24,15 @@ pytest.importorskip("playwright")
 pytest.importorskip("trame")
 pytest.importorskip("trame_vtk")
 from stitchswitch.studio.canvas import view_of  # noqa: E402
-from studio_driver import CHROMIUM, browser_page, drag, studio_server, to_px  # noqa: E402
+from studio_driver import (  # noqa: E402
+    CHROMIUM,
+    VIEW_UPDATES,
+    browser_page,
+    drag,
+    studio_server,
+    to_px,
+    view_mode,
+)
 
 pytestmark = [pytest.mark.slow,
               pytest.mark.skipif(not os.path.exists(CHROMIUM), reason=f"{CHROMIUM} is not installed "
@@ -45,13 +53,29 @@ def readout_h(page) -> float:
 
 
 def scene_loads(page) -> int:
-    return int(page.evaluate("window.studioSceneLoads || 0"))
+    return int(page.evaluate(VIEW_UPDATES[view_mode(page)]))
 
 
 def wait_scene(page, loads: int) -> None:
-    """Until the 3D view has loaded a newer scene than the one counted in ``loads``."""
-    page.wait_for_function(f"(window.studioSceneLoads || 0) > {loads} && !window.studioSceneBusy",
-                           timeout=60000)
+    """Until the 3D view shows a newer scene than the one counted in ``loads``."""
+    busy = " && !window.studioSceneBusy" if view_mode(page) == "browser" else ""
+    page.wait_for_function(f"{VIEW_UPDATES[view_mode(page)]} > {loads}{busy}", timeout=60000)
+
+
+def check_software_view(page) -> None:
+    """Headless chromium has no GPU, nor has this machine: the view is rendered on the server
+    when the page was left to choose (``--view auto``); a WebGL view's context is software and
+    single-sampled."""
+    page.wait_for_selector("#view3d canvas, #view3d img", state="attached")
+    if view_mode(page) == "server":
+        assert "rendered on the server" in page.locator("#view-mode").inner_text()
+        page.wait_for_function("window.studioImageLoads > 0", timeout=60000)
+        assert page.locator("#view3d img[src^='blob:']").count() == 1     # the pushed image
+        return
+    page.wait_for_selector("#view3d canvas")
+    assert "SwiftShader" in page.evaluate("window.studioSoftwareGL")
+    assert page.evaluate("document.querySelector('#view3d canvas').getContext('webgl2')"
+                         ".getContextAttributes().antialias") is False
 
 
 def errors(page) -> int:
@@ -70,11 +94,9 @@ def test_studio_in_chromium(tmp_path):
             circles = page.locator("#canvas circle")
             assert circles.count() == 1
             shot(page, tmp_path, "open")
-            # headless chromium has no GPU: the view's WebGL context is software and single-sampled
-            page.wait_for_selector("#view3d canvas")
-            assert "SwiftShader" in page.evaluate("window.studioSoftwareGL")
-            assert page.evaluate("document.querySelector('#view3d canvas').getContext('webgl2')"
-                                 ".getContextAttributes().antialias") is False
+            check_software_view(page)
+            from stitchswitch.studio import render_mode
+            assert view_mode(page) == render_mode.choose("auto")
             # add a patch by clicking on an empty spot of the piece: it becomes the selection
             page.mouse.click(*to_px(page, view, 60.0, 150.0))
             page.wait_for_function("document.querySelectorAll('#canvas circle').length == 2")
@@ -214,3 +236,39 @@ def test_studio_in_chromium(tmp_path):
         rad = np.array([p["diameter_mm"] / 2 for p in h["patches"]])[:, None]
         expected = (pos + rad).max(axis=0) - (pos - rad).min(axis=0)
         assert np.ptp(xy, axis=0) == pytest.approx(expected, abs=1.5)
+
+
+@pytest.mark.parametrize("mode", ["browser", "server"])
+def test_either_view_follows_the_fill_slider(tmp_path, mode):
+    """``--view browser`` (vtk.js draws the scene's arrays in WebGL) and ``--view server`` (VTK
+    renders on the server, the page shows its images): a fill step changes the readout and the
+    picture of the 3D view, and dragging in the view rotates it."""
+    from stitchswitch.demos.tennis_pocket import build
+
+    design = build().design
+    path = tmp_path / "tennis-pocket.json"
+    save_design(design, path)
+    view = view_of(design)
+    with studio_server(path, view=mode) as (url, _):
+        with browser_page(url) as page:
+            assert view_mode(page) == mode
+            check_software_view(page)
+            wait_scene(page, 0)
+            page.mouse.click(*to_px(page, view, *design.patches[0].centre_mm))
+            page.wait_for_selector("#slider-fill .v-slider-thumb")
+            h0 = readout_h(page)
+            page.wait_for_timeout(1500)                 # the selection's scene, if any, is in
+            before, loads = page.locator("#view3d").screenshot(), scene_loads(page)
+            page.locator("#slider-fill .v-slider-thumb").focus()
+            for _ in range(10):
+                page.keyboard.press("ArrowRight")
+            wait_scene(page, loads)
+            page.wait_for_function(f"!document.querySelector('#readout').innerText.startsWith('h {h0} ')")
+            page.wait_for_timeout(500)
+            after = page.locator("#view3d").screenshot()
+            assert after != before
+            box = page.locator("#view3d").bounding_box()
+            cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+            drag(page, (cx, cy), (cx + 120, cy + 40), steps=8)
+            page.wait_for_timeout(1000)
+            assert page.locator("#view3d").screenshot() != after

@@ -8,6 +8,7 @@ import click
 
 from stitchswitch.cli import options
 from stitchswitch.errors import InvalidInputError
+from stitchswitch.studio import render_mode
 
 log = logging.getLogger("stitchswitch")
 
@@ -67,9 +68,14 @@ def _source(source, rectangle, output, size=None):
 @click.option("--size", default=None, metavar="SIZE",
               help="The size of a graded PATTERN.dxf to start from (default: its first; the "
                    "page switches sizes).")
+@click.option("--view", "view_mode", default="auto", show_default=True,
+              type=click.Choice(render_mode.MODES),
+              help="Where the 3D view is drawn: by the browser's WebGL, or rendered on the "
+                   "server and sent as images; auto renders on the server when this "
+                   "machine's OpenGL is a software one (no GPU), where that is faster.")
 @click.option("--no-browser", is_flag=True, help="Do not open a browser.")
 @click.option("--recover", is_flag=True, help="Open the autosaved edits of DESIGN.json instead of the file.")
-def studio(source, rectangle, output, port, host, size, no_browser, recover):
+def studio(source, rectangle, output, port, host, size, view_mode, no_browser, recover):
     """Edit a design in the browser: place and tune patches with a live readout and 3D view,
     inverse design, the constraint check, hoop grouping and export. Ctrl-C stops it."""
     try:
@@ -90,5 +96,5 @@ def studio(source, rectangle, output, port, host, size, no_browser, recover):
         log.warning(f"--host {host}: the studio is reachable from the network")
     session = Session(document, design, default_map(), Scene3D(), pattern)
     click.echo(f"stitchswitch studio: http://{host}:{port}/ (Ctrl-C stops it)")
-    serve(session, port=port, host=host, open_browser=not no_browser)
+    serve(session, port=port, host=host, open_browser=not no_browser, view_mode=view_mode)
     click.echo("stitchswitch studio: stopped")

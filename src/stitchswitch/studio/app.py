@@ -1,4 +1,4 @@
-"""The studio's web page (trame, Vue 3 with Vuetify 3, VTK local view): binds the widgets to a
+"""The studio's web page (trame, Vue 3 with Vuetify 3, VTK local or remote view): binds the widgets to a
 ``Session`` and serves it.
 
 Design Mode: the canvas (SVG from ``canvas``; a press on a patch selects it, Shift+press adds
@@ -7,9 +7,10 @@ the pointer with their piece-edge rule (throttled moves, ``DRAG_THROTTLE_MS``) a
 changes on release; a click on an empty spot of a piece adds a
 patch, a drag from an empty spot pans, the wheel and the toolbar's - / Fit / + zoom; Delete
 removes the selection), the inspector (diameter and fill sliders, state, the live readout,
-the composite core and the conductive triangles), the 3D view (WebGL in the browser, the
-scene of ``scene3d``), the inverse-design panel (apply a candidate to the selected patch, or place it
-where the next click lands) and the constraint panel. Fabrication Mode:
+the composite core and the conductive triangles), the 3D view (the scene of ``scene3d``,
+drawn by the browser's WebGL or rendered on the server: ``render_mode``), the
+inverse-design panel (apply a candidate to the selected patch, or place it where the next
+click lands) and the constraint panel. Fabrication Mode:
 hoop grouping drawn on the canvas, each hooping's stitch plan (a click on it), export of the
 fabrication folder and a download link for each exported file.
 """
@@ -22,7 +23,8 @@ import time
 from stitchswitch.errors import InvalidInputError, StitchSwitchError
 from stitchswitch.preview3d import colours
 from stitchswitch.reduced.design_space.inverse import InverseTarget
-from stitchswitch.studio import canvas, live_check
+from stitchswitch.studio import canvas, live_check, render_mode
+from stitchswitch.studio.image_channel import ImageChannel
 from stitchswitch.studio.readout import profile_svg
 from stitchswitch.studio.scene3d import PlotterSync
 from stitchswitch.studio.view_channel import ViewChannel
@@ -49,6 +51,10 @@ ZOOM_STEP = 1.25
 #: build and serialization would hold the server's event loop before the panel's message is
 #: written, and the browser's WebGL render of the scene would hold the frame that shows it
 SCENE_DELAY_S = 0.15
+#: a server-rendered frame waits this long after the readout's or the panel's message: writing
+#: it to the websocket takes the event loop a few turns, and a render started before that holds
+#: it (the readout was shown 66-69 ms after a slider step instead of 42-47, median)
+PANEL_WRITE_S = 0.005
 #: the page's acknowledgement that it has drawn the panel of an edit
 PANEL_SHOWN = "window.requestAnimationFrame(() => trigger('studio_panel_shown'))"
 #: run by the page before the 3D view makes its WebGL context: on a software WebGL renderer
@@ -57,21 +63,24 @@ PANEL_SHOWN = "window.requestAnimationFrame(() => trigger('studio_panel_shown'))
 #: software renderer rasterizes and resolves every sample: it made the frame of the
 #: 40-patch scene take 215 instead of 48 ms (docs/studio.md, "Speed"). With a GPU the
 #: default stays.
-SOFTWARE_GL_NO_MSAA = """(() => {
+SOFTWARE_GL_NO_MSAA = r"""(() => {
   const probe = document.createElement('canvas').getContext('webgl2');
   if (!probe) return;
   const info = probe.getExtension('WEBGL_debug_renderer_info');
   const name = String(probe.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : probe.RENDERER));
   const lose = probe.getExtension('WEBGL_lose_context');
   if (lose) lose.loseContext();
-  if (!/swiftshader|llvmpipe|softpipe|software/i.test(name)) return;
+  if (!/%s/i.test(name)) return;
   const getContext = HTMLCanvasElement.prototype.getContext;
   HTMLCanvasElement.prototype.getContext = function (type, attrs) {
     if (type === 'webgl2' || type === 'webgl') attrs = Object.assign({}, attrs, {antialias: false});
     return getContext.call(this, type, attrs);
   };
   window.studioSoftwareGL = name;
-})();"""
+})();""" % render_mode.SOFTWARE_RENDERER
+#: the server-rendered view's images: JPEG quality at rest and while rotating or zooming, and
+#: full size while rotating (a software frame of the scene takes 13 ms: no need to shrink it)
+REMOTE_VIEW_QUALITY = {"still_quality": 90, "interactive_quality": 70, "interactive_ratio": 1}
 #: the 3D view's name on the page (its full scene state is the state key ``scene_`` + it)
 VIEW_REF = "studio_view"
 READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_b_mm"),
@@ -90,8 +99,9 @@ def _plotter():
     return pl
 
 
-def build_app(session, server=None):
-    """The trame server with the studio page for ``session``."""
+def build_app(session, server=None, view_mode: str = "auto"):
+    """The trame server with the studio page for ``session``; its 3D view drawn where
+    ``render_mode.choose(view_mode)`` says."""
     from trame.app import get_server
     from trame.ui.vuetify3 import SinglePageWithDrawerLayout
     from trame.widgets import client, html
@@ -101,6 +111,18 @@ def build_app(session, server=None):
     server = server or get_server("stitchswitch-studio", client_type="vue3")
     state, ctrl = server.state, server.controller
     pl = _plotter()
+    renderer = []
+
+    def renderer_name() -> str:
+        if not renderer:
+            renderer.append(render_mode.server_renderer(type(pl.ren_win)))
+        return renderer[0]
+
+    state.view_mode = render_mode.choose(view_mode, renderer_name)
+    if state.view_mode == "server" and render_mode.is_software(renderer_name()):
+        # single-sampled: a software rasterizer spends 3x the frame on 8 samples (42 ms
+        # against 13 ms for the 40-patch scene)
+        pl.ren_win.SetMultiSamples(0)
     view_sync = PlotterSync(pl)
     session.autosave_later = True
     drag = {"id": None, "start": None}
@@ -145,7 +167,7 @@ def build_app(session, server=None):
         session.write_autosave()
 
     def build_view() -> None:
-        """The scene and the view's actors, for ``ViewChannel.send``."""
+        """The scene and the view's actors, for the view's channel's ``send``."""
         shown_last[:] = (session.state.design, colours.status_from_violations(session.violations))
         session.refresh_scene()
         t0, c0 = time.perf_counter(), time.process_time()
@@ -159,7 +181,8 @@ def build_app(session, server=None):
         session.timings_s["sync_cpu_s"] = time.process_time() - c0
 
     def scene_sent(send_s: float, send_cpu_s: float) -> None:
-        """After the view's delta, on the same websocket: the timings and the scene stamp."""
+        """After the view's delta or image, on the same websocket: the timings and the scene
+        stamp."""
         sent = {"view_send_s": send_s, "view_send_cpu_s": send_cpu_s}
         state.timings = ({k: round(1000 * v, 2) for k, v in (session.timings_s | sent).items()}
                          | sync_counts)
@@ -177,7 +200,9 @@ def build_app(session, server=None):
         if shown[0] is shown_last[0] and shown[1] == shown_last[1]:
             return
         if pending["scene"] is None:
-            pending["scene"] = asyncio.get_event_loop().call_later(SCENE_DELAY_S, push_scene)
+            # a server-rendered frame does not hold the page's frame: it follows the panel
+            delay = PANEL_WRITE_S if state.view_mode == "server" else SCENE_DELAY_S
+            pending["scene"] = asyncio.get_event_loop().call_later(delay, push_scene)
 
     @ctrl.trigger("studio_panel_shown")
     def panel_shown():
@@ -274,6 +299,10 @@ def build_app(session, server=None):
             state.flush()
         except (InvalidInputError, StitchSwitchError, OSError) as exc:
             state.message = f"Error: {exc}"
+        if state.view_mode == "server" and pending["scene"] is None:
+            # the frame follows the readout, its outlines those of the last check (a check that
+            # changes their verdicts has the frame rendered again)
+            pending["scene"] = asyncio.get_event_loop().call_later(PANEL_WRITE_S, push_scene)
         # slider steps that arrive meanwhile join the pending check, which takes the latest design
         if pending["check"] is None:
             pending["check"] = asyncio.get_event_loop().call_later(0.001, check_later)
@@ -393,6 +422,9 @@ def build_app(session, server=None):
             v3.VBtn("+", click=guarded(lambda: session.zoom(ZOOM_STEP)), id="zoom-in", size="small")
             html.Span("{{ dirty ? 'unsaved changes' : 'saved' }}", classes="text-caption mx-2",
                       id="dirty")
+            html.Span("3D view: {{ view_mode == 'server' ? 'rendered on the server' : "
+                      "'WebGL in the browser' }}", classes="text-caption mx-2", id="view-mode")
+            html.Span("{{ view_mode }}", id="view-mode-key", style="display:none")
             html.Span("{{ edits }}", id="edits", style="display:none")
             client.ClientStateChange(value="edits", change=PANEL_SHOWN)
             html.Span("{{ scene_stamp }}", id="scene-stamp", style="display:none")
@@ -492,23 +524,33 @@ def build_app(session, server=None):
                               wheel=(on_wheel, WHEEL), keydown=(on_key, "[$event.key]")):
                     for key in ("canvas_pieces", "canvas_svg", "canvas_rulers"):
                         html.Div(v_html=(key,), style=CANVAS_LAYER)
-                client.Script(SOFTWARE_GL_NO_MSAA)      # before the view makes its context
+                if state.view_mode == "browser":
+                    client.Script(SOFTWARE_GL_NO_MSAA)      # before the view makes its context
                 with html.Div(style="flex:1; min-width:0", id="view3d"):
-                    # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js has
-                    # the new geometry, its arrays fetched), counted for the benchmark and tests
-                    view = vtk_widgets.VtkLocalView(
-                        pl.ren_win, ref=VIEW_REF, before_scene_loaded="window.studioSceneBusy = true",
-                        after_scene_loaded="window.studioSceneBusy = false; "
-                                           "window.studioSceneLoads = (window.studioSceneLoads || 0) + 1;"
-                                           " trigger('studio_scene_loaded')")
-                    channel = ViewChannel(server, view, pl.ren_win, VIEW_REF, build_view, scene_sent)
+                    if state.view_mode == "server":
+                        view = vtk_widgets.VtkRemoteView(pl.ren_win, ref=VIEW_REF,
+                                                         **REMOTE_VIEW_QUALITY)
+                        channel = ImageChannel(server, view, pl.ren_win, build_view, scene_sent)
+                    else:
+                        # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js
+                        # has the new geometry, its arrays fetched), counted for the benchmark
+                        # and tests
+                        view = vtk_widgets.VtkLocalView(
+                            pl.ren_win, ref=VIEW_REF,
+                            before_scene_loaded="window.studioSceneBusy = true",
+                            after_scene_loaded="window.studioSceneBusy = false; "
+                                               "window.studioSceneLoads = (window.studioSceneLoads"
+                                               " || 0) + 1; trigger('studio_scene_loaded')")
+                        channel = ViewChannel(server, view, pl.ren_win, VIEW_REF, build_view,
+                                              scene_sent)
                     ctrl.view_reset_camera = view.reset_camera
     push_panel()
     push_scene()
     return server
 
 
-def serve(session, port: int = 0, host: str = "127.0.0.1", open_browser: bool = True) -> None:
+def serve(session, port: int = 0, host: str = "127.0.0.1", open_browser: bool = True,
+          view_mode: str = "auto") -> None:
     """Run the page until Ctrl-C (trame prints the URL)."""
-    server = build_app(session)
+    server = build_app(session, view_mode=view_mode)
     server.start(port=port, host=host, open_browser=open_browser, show_connection_info=True)
