@@ -43,7 +43,7 @@ another's stamp.
   render (the page's own compositing).
 
 Each step starts after ``SETTLE_S`` (the previous frame is done and the view's deferred full
-state, ``studio.view_channel``, has gone out). The 3D view counts as loaded when its
+state, ``studio.view3d.view_channel``, has gone out). The 3D view counts as loaded when its
 ``afterSceneLoaded`` event (vtk.js has synchronized the
 scene and fetched the new arrays) has fired for the edit. The server's share: ``check``
 (incremental, ``studio.live_check.LiveCheck``), ``scene`` (``preview3d.scene.SceneBuilder``:

@@ -95,7 +95,7 @@ def test_studio_in_chromium(tmp_path):
             assert circles.count() == 1
             shot(page, tmp_path, "open")
             check_software_view(page)
-            from stitchswitch.studio import render_mode
+            from stitchswitch.studio.view3d import render_mode
             assert view_mode(page) == render_mode.choose("auto")
             # add a patch by clicking on an empty spot of the piece: it becomes the selection
             page.mouse.click(*to_px(page, view, 60.0, 150.0))

@@ -5,8 +5,8 @@ import asyncio
 
 import pytest
 
-from stitchswitch.studio import image_channel, render_mode
-from stitchswitch.studio.image_channel import ImageChannel
+from stitchswitch.studio.view3d import image_channel, render_mode
+from stitchswitch.studio.view3d.image_channel import ImageChannel
 
 
 class FakeApp:

@@ -13,8 +13,8 @@ from stitchswitch.preview3d import colours
 from stitchswitch.preview3d.scene import SceneBuilder, build_scene
 from stitchswitch.preview3d.spec import spec_from_design
 from stitchswitch.studio.live_check import LiveCheck
-from stitchswitch.studio.scene3d import PlotterSync, Scene3D, group_of, view_scale
 from stitchswitch.studio.state import StudioState
+from stitchswitch.studio.view3d.scene3d import PlotterSync, Scene3D, group_of, view_scale
 
 
 def grid_design(n=3, m=2, pieces=1):
@@ -204,7 +204,7 @@ def test_view_colour_range_is_the_heights_range_with_the_canvas_colours(heights)
     pv = pytest.importorskip("pyvista")
     from matplotlib import colormaps
 
-    from stitchswitch.studio.scene3d import _lookup_table
+    from stitchswitch.studio.view3d.scene3d import _lookup_table
 
     (a, b), (lo, hi) = view_scale(heights)
     assert (lo, hi) == (min(0.0, *heights), max(0.0, *heights))

@@ -2,8 +2,8 @@
 sent on the page's acknowledgement, the full scene state stored once the edits pause."""
 import asyncio
 
-from stitchswitch.studio import view_channel
-from stitchswitch.studio.view_channel import ViewChannel
+from stitchswitch.studio.view3d import view_channel
+from stitchswitch.studio.view3d.view_channel import ViewChannel
 
 
 class FakeState(dict):

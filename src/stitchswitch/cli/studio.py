@@ -8,7 +8,7 @@ import click
 
 from stitchswitch.cli import options
 from stitchswitch.errors import InvalidInputError
-from stitchswitch.studio import render_mode
+from stitchswitch.studio.view3d import render_mode
 
 log = logging.getLogger("stitchswitch")
 
@@ -83,8 +83,8 @@ def studio(source, rectangle, output, port, host, size, view_mode, no_browser, r
     except ImportError as exc:
         raise InvalidInputError(f"the studio needs its extra: pip install 'stitchswitch[studio]' ({exc})") from None
     from stitchswitch.reduced.design_space.cache import default_map
-    from stitchswitch.studio.scene3d import Scene3D
     from stitchswitch.studio.session import Session
+    from stitchswitch.studio.view3d.scene3d import Scene3D
 
     document, design, pattern = _source(source, rectangle, output, size)
     recovered = document.recover()

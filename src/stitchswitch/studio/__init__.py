@@ -18,17 +18,11 @@ page (``app``, trame) only binds widgets to them.
 * ``stitch_preview``: ``plan_svg``, a hooping's stitch plan as SVG, and its ``counts``.
 * ``canvas``: the 2D canvas as SVG markup (rulers, the edge rule while dragging), zoom and pan,
   and the mapping of a click back to garment mm.
-* ``scene3d``: ``Scene3D``, the 3D view's scene (``preview3d.scene.SceneBuilder``, rebuilt
-  incrementally), and ``PlotterSync``, its pyvista actors.
-* ``render_mode``: ``choose``, where the 3D view is drawn (the browser's WebGL, or VTK on the
-  server when this machine's OpenGL is software).
-* ``view_channel``: ``ViewChannel``, sending the view's changes to the page (one scene in
-  flight, the newest wins; the full scene state once edits pause).
-* ``image_channel``: ``ImageChannel``, the server-rendered view's image of each edit, pushed
-  as soon as it is encoded.
+* ``view3d``: the 3D view: its scene and pyvista actors, where it is drawn (the browser's
+  WebGL or VTK on the server) and how each edit reaches the page.
 * ``session``: ``Session``, everything the page shows, recomputed after each action.
 * ``app``: the trame page and ``serve(session, port, host, open_browser, view_mode)``.
 
 trame, trame-vuetify and trame-vtk are the optional extra ``stitchswitch[studio]``; only
-``app`` imports them (and ``image_channel``, when the page runs).
+``app`` imports them (and ``view3d.image_channel``, when the page runs).
 """

@@ -23,11 +23,12 @@ import time
 from stitchswitch.errors import InvalidInputError, StitchSwitchError
 from stitchswitch.preview3d import colours
 from stitchswitch.reduced.design_space.inverse import InverseTarget
-from stitchswitch.studio import canvas, live_check, render_mode
-from stitchswitch.studio.image_channel import ImageChannel
+from stitchswitch.studio import canvas, live_check
 from stitchswitch.studio.readout import profile_svg
-from stitchswitch.studio.scene3d import PlotterSync
-from stitchswitch.studio.view_channel import ViewChannel
+from stitchswitch.studio.view3d import render_mode
+from stitchswitch.studio.view3d.image_channel import ImageChannel
+from stitchswitch.studio.view3d.scene3d import PlotterSync
+from stitchswitch.studio.view3d.view_channel import ViewChannel
 
 #: the pointer expression passed to the canvas handlers: position on the SVG and its size, px,
 #: then the Shift key
