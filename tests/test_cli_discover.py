@@ -53,6 +53,13 @@ def test_report_json_and_summary(case, tmp_path):
     assert "data:image/png;base64," in html and "Where the model is wrong" in html
     md = (out / "report.md").read_text()
     assert "## 4. The gap before and after" in md and "SYNTHETIC" in md
+    # the folds whose refit kept the full fit are counted, and said where there are any
+    rows = [rep["starting_model"]] + rep["ranking"]
+    assert all(0 <= r["cv_stuck_folds"] <= r["cv_folds"] for r in rows)
+    stuck = [r for r in rows if r["cv_stuck_folds"]]
+    assert ("Stuck folds:" in md) == bool(stuck) == ("CV folds stuck)" in r.stdout)
+    for row in stuck[1:] if stuck and stuck[0] is rows[0] else stuck:
+        assert f"{row['cv_stuck_folds']} of {row['cv_folds']} folds for {row['effect']}" in md
     # same input, same result (JSON on stdout, nothing else there); the report dir is reusable
     r2 = CliRunner().invoke(cli, ["discover", "--data", str(data), "--material", str(material),
                                   *ARGS, "--json"])

@@ -166,6 +166,27 @@ def test_fit_recovers_coefficients_from_noise_free_keypoints():
     assert f.parameters["w_b_emb"] == pytest.approx(truth.w_b_emb, rel=0.05)
 
 
+def test_cross_validation_counts_the_folds_whose_refit_kept_the_full_fit():
+    """A fold refit started at the exact optimum of noise-free rows has nothing to improve and
+    keeps it (its held-out rows are then predicted in-sample: stuck); started away from the
+    optimum every fold moves."""
+    from stitchswitch.validation.discovery.cv import cross_validate
+
+    spec = ModelSpec(START, None, ("w_b_emb", "k_r_emb"))
+    designs = [(30.0, 0.8), (50.0, 1.0), (70.0, 0.7), (40.0, 0.9), (60.0, 0.6), (80.0, 1.0)]
+    ev = Evaluator()
+    truth = START.replace(w_b_emb=1.4 * START.w_b_emb, k_r_emb=1.6 * START.k_r_emb)
+    x_true = spec.encode(truth)
+    measured = ev.one(spec, x_true, designs)
+    labels = fold_labels(designs, 3, 0)
+    at_optimum = cross_validate(spec, ev, designs, measured, x_true, labels, max_nfev=3)
+    assert at_optimum.folds == 3 and at_optimum.stuck_folds == 3
+    assert at_optimum.score_mm2 < 1e-8
+    away = cross_validate(spec, ev, designs, measured, spec.encode(START), labels, max_nfev=3)
+    assert away.folds == 3 and away.stuck_folds == 0
+    assert all(not np.array_equal(x, spec.encode(START)) for x in away.fold_parameters)
+
+
 def test_a_profile_fit_holds_the_strength_and_finds_the_coefficients_there():
     """``fit(..., free=k)``: the coefficients move, the effect's strength does not; at the true
     strength the refitted coefficients reproduce noise-free data, which the starting model's

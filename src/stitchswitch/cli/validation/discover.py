@@ -132,6 +132,12 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
     click.echo(summary(rep, disc.elapsed_s, disc.solves, report_dir, json_out))
 
 
+def _stuck(row: dict) -> str:
+    """"  (k/n CV folds stuck)" when k of a cross-validation's n fold refits kept the full fit."""
+    k = row.get("cv_stuck_folds", 0)
+    return f"  ({k}/{row.get('cv_folds', 0)} CV folds stuck)" if k else ""
+
+
 def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> str:
     """The ranking, the verdict and the before/after table as text."""
     from stitchswitch.validation.measured import QUANTITIES
@@ -141,7 +147,7 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
         lines.append("SYNTHETIC data (the source line says so): not measurements")
     s0 = rep["starting_model"]
     lines.append(f"starting model: train MSE {s0['train_mse_mm2']:.3f} mm^2, cross-validated "
-                 f"{s0['cv_score_mm2']:.3f} mm^2")
+                 f"{s0['cv_score_mm2']:.3f} mm^2{_stuck(s0)}")
     sysq = [q for q in QUANTITIES if rep["residuals_before"][q]["systematic"]]
     lines.append("systematic residuals: " + (", ".join(sysq) if sysq else "none"))
     lines.append("")
@@ -151,7 +157,7 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
         screened = "" if r.get("refined", True) else "  (screened out at "
         screened += f"{r['resolution_nodes']} nodes)" if screened else ""
         lines.append(f"{r['rank']:>4}  {r['effect']:20s} {r['score']:8.3f} {r['p_value']:9.2g}  "
-                     f"{'yes' if r['significant'] else 'no':3}  {strength}{screened}")
+                     f"{'yes' if r['significant'] else 'no':3}  {strength}{screened}{_stuck(r)}")
     lines.append("")
     name = rep["missing_effect"]
     if rep.get("indistinguishable"):

@@ -10,6 +10,9 @@
   started at the full-data fit (its finite-difference Jacobian is cached, so the first step is
   free) with at most ``max_nfev`` steps, and predict the held-out designs with cold solves. The
   score is the mean squared error (mm^2) of those held-out predictions over the five keypoints.
+  A fold whose refit ends where it started (its steps were all rejected within the budget) is
+  counted as stuck: its held-out rows are predicted by the full fit, which saw them, so with
+  stuck folds the score is partly a training error.
   Cross-validation is the complexity penalty: an extra parameter that only fits noise makes
   the held-out predictions worse, not better.
 * ``f_test``: is the drop of the training residual sum of squares from adding m parameters
@@ -64,6 +67,11 @@ class CrossValidation:
     row_loss: np.ndarray         # mean squared error of each row over the five keypoints
     score_mm2: float
     fold_parameters: tuple       # x of each fold's refit
+    stuck_folds: int = 0         # folds whose refit kept the full fit's parameters exactly
+
+    @property
+    def folds(self) -> int:
+        return len(self.fold_parameters)
 
 
 def cross_validate(spec, ev, designs, measured, x_full, labels, *, max_nfev: int = 3) -> CrossValidation:
@@ -80,7 +88,9 @@ def cross_validate(spec, ev, designs, measured, x_full, labels, *, max_nfev: int
         xs.append(f.x)
         pred[test] = ev.one(spec, f.x, [d for d, t in zip(designs, test) if t])
     loss = np.mean((pred - measured) ** 2, axis=1)
-    return CrossValidation(pred, loss, float(np.mean(loss)), tuple(xs))
+    start = np.asarray(x_full, dtype=float)
+    stuck = sum(bool(np.array_equal(np.asarray(x, dtype=float), start)) for x in xs)
+    return CrossValidation(pred, loss, float(np.mean(loss)), tuple(xs), stuck)
 
 
 def f_test(rss0: float, rss1: float, n: int, k0: int, k1: int) -> tuple[float, float]:

@@ -121,7 +121,7 @@ def _story(rep: dict) -> dict:
         for q in QUANTITIES]
     rank_table = [["rank", "effect", "CV MSE (mm^2)", "F", "p", "significant", "fitted strength",
                    "signature corr.", "unabsorbed", "val MAE h before/after",
-                   "val MAE r_a before/after"]]
+                   "val MAE r_a before/after", "CV folds stuck"]]
     for r in rep["ranking"]:
         sig = r["signature"]
         rank_table.append([
@@ -130,7 +130,17 @@ def _story(rep: dict) -> dict:
             ", ".join(f"{k} = {v:.4g}" for k, v in r["effect_parameters"].items()),
             f"{sig['correlation']:+.2f}", f"{sig['unabsorbed']:.2f}",
             f"{r['val_mae_before']['h']:.2f} / {r['val_mae_after']['h']:.2f}",
-            f"{r['val_mae_before']['r_a']:.2f} / {r['val_mae_after']['r_a']:.2f}"])
+            f"{r['val_mae_before']['r_a']:.2f} / {r['val_mae_after']['r_a']:.2f}",
+            f"{r.get('cv_stuck_folds', 0)} / {r.get('cv_folds', 0)}"])
+    stuck = [(r["effect"], r.get("cv_stuck_folds", 0), r.get("cv_folds", 0))
+             for r in [{"effect": "the starting model", **s0}] + rep["ranking"]
+             if r.get("cv_stuck_folds", 0)]
+    stuck_text = ("" if not stuck else
+                  "Stuck folds: in " + "; ".join(f"{k} of {n} folds for {name}"
+                                                 for name, k, n in stuck) +
+                  ", the fold's refit kept the full fit's parameters (each step was rejected "
+                  "within its budget). Those folds' rows are predicted by a fit that saw them, "
+                  "so these cross-validated errors are partly training errors.")
     name = rep["missing_effect"]
     if name:
         top = rep["ranking"][0]
@@ -180,6 +190,7 @@ def _story(rep: dict) -> dict:
                                  f"{r['gain']:.1f})" for r in rep["proposal"]["designs"])
                        + ".")
     return {"calib": calib, "where": where, "res_table": res_table, "rank_table": rank_table,
+            "stuck_text": stuck_text,
             "verdict": verdict, "evidence": evidence, "gap_table": gap_table,
             "after_text": after_text}
 
@@ -218,6 +229,7 @@ def _markdown(rep: dict) -> str:
               f"Ranking: {METHOD['ranking']}. Significance: {METHOD['significance']} "
               f"(threshold {rep['significance_threshold']:.3g}).", ""]
     lines += _md_table(st["rank_table"])
+    lines += ["", st["stuck_text"]] if st["stuck_text"] else []
     lines += ["", "![ranking](ranking.png)", "", "## 3. The evidence", "", st["verdict"], "",
               st["evidence"], "", "![signatures](signatures.png)", "",
               "## 4. The gap before and after, validation rows", ""]
@@ -258,7 +270,9 @@ def _html(rep: dict, images: dict) -> str:
         Section("2. Candidate effects, refitted and ranked", (
             Paragraph(f"Ranking: {METHOD['ranking']}. Significance: {METHOD['significance']} "
                       f"(threshold {rep['significance_threshold']:.3g}).", cls="note"),
-            _table(st["rank_table"]), img("ranking.png", "ranking"))),
+            _table(st["rank_table"]),
+            *([Paragraph(st["stuck_text"], cls="note")] if st["stuck_text"] else []),
+            img("ranking.png", "ranking"))),
         Section("3. The evidence", (
             Paragraph(_bold(st["verdict"])), Paragraph(st["evidence"]),
             img("signatures.png", "signatures"))),

@@ -189,6 +189,8 @@ class Candidate:
     zero_strength: bool = False
     row_loss: np.ndarray | None = field(default=None, repr=False, compare=False)
     val_row_loss: np.ndarray | None = field(default=None, repr=False, compare=False)
+    cv_folds: int = 0
+    cv_stuck_folds: int = 0      # folds whose refit kept the full fit (``cv.cross_validate``)
 
     @property
     def held_out_loss(self) -> np.ndarray:
@@ -209,7 +211,8 @@ class Candidate:
                 "val_mae_after": dict(self.val_mae_after_mm), "signature": self.signature,
                 "uncertified_solves": self.uncertified_solves, "fit_start": self.fit_start,
                 "rank": self.rank, "resolution_nodes": self.resolution_nodes,
-                "refined": self.refined, "zero_strength": self.zero_strength}
+                "refined": self.refined, "zero_strength": self.zero_strength,
+                "cv_folds": self.cv_folds, "cv_stuck_folds": self.cv_stuck_folds}
 
 
 @dataclass(frozen=True)
@@ -303,7 +306,8 @@ def _candidate(name, spec, f, m_tr, cv, cv0, why, how, rss0, k0, m, config, ev, 
         val_mae_after_mm={q: v["mae_mm"] for q, v in _metrics(pred_va, m_va).items()},
         signature=why, uncertified_solves=f.uncertified, fit_start=how,
         spec=spec, x=f.x, resolution_nodes=spec.start.n_nodes, refined=refined,
-        zero_strength=zero, row_loss=cv.row_loss,
+        zero_strength=zero, row_loss=cv.row_loss, cv_folds=cv.folds,
+        cv_stuck_folds=cv.stuck_folds,
         val_row_loss=np.mean((pred_va - np.asarray(m_va, dtype=float)) ** 2, axis=1)
         if len(d_va) else None)
 
@@ -690,7 +694,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         "starting_model": {
             "label": start_label, "free": list(base.free),
             "parameters": base_fit.parameters, "train_mse_mm2": base_fit.mse_mm2,
-            "cv_score_mm2": cv0.score_mm2, "uncertified_solves": base_fit.uncertified,
+            "cv_score_mm2": cv0.score_mm2, "cv_folds": cv0.folds,
+            "cv_stuck_folds": cv0.stuck_folds, "uncertified_solves": base_fit.uncertified,
             "screened_train_mse_mm2": fs.mse_mm2, "repolished": repolished},
         "residuals_before": res_before,
         "residuals_after": res_after,
