@@ -78,6 +78,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "src"))
 
 from bench_preview import design_40  # noqa: E402
 from stitchswitch.studio.app import VIEW_REF  # noqa: E402
+from stitchswitch.studio.view3d.render_mode import MODES  # noqa: E402
 from studio_driver import VIEW_UPDATES, browser, studio_server, to_px, view_mode  # noqa: E402
 
 #: the pause before each step, so that the view's deferred full state (``view_channel``) and
@@ -325,7 +326,7 @@ def main(argv=None) -> int:
     ap.add_argument("--runs", type=int, default=30)
     ap.add_argument("--alternate", action="store_true",
                     help="slider steps back and forth between two values (cached arrays)")
-    ap.add_argument("--view", default="auto", choices=("auto", "browser", "server"),
+    ap.add_argument("--view", default="auto", choices=MODES,
                     help="where the 3D view is drawn (stitchswitch studio --view)")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args(argv)

@@ -17,6 +17,7 @@ fabrication folder and a download link for each exported file.
 from __future__ import annotations
 
 import asyncio
+import functools
 import os
 import time
 
@@ -112,13 +113,7 @@ def build_app(session, server=None, view_mode: str = "auto"):
     server = server or get_server("stitchswitch-studio", client_type="vue3")
     state, ctrl = server.state, server.controller
     pl = _plotter()
-    renderer = []
-
-    def renderer_name() -> str:
-        if not renderer:
-            renderer.append(render_mode.server_renderer(type(pl.ren_win)))
-        return renderer[0]
-
+    renderer_name = functools.cache(lambda: render_mode.server_renderer(type(pl.ren_win)))
     state.view_mode = render_mode.choose(view_mode, renderer_name)
     if state.view_mode == "server" and render_mode.is_software(renderer_name()):
         # single-sampled: a software rasterizer spends 3x the frame on 8 samples (42 ms
@@ -195,8 +190,9 @@ def build_app(session, server=None, view_mode: str = "auto"):
         channel.send()
 
     def schedule_scene() -> None:
-        """The 3D view after the panel has gone out, when the design or the check's verdicts
-        changed (a selection alone changes nothing there); edits arriving meanwhile join it."""
+        """The 3D view after the panel (rendered on the server: after a slider step's readout)
+        has gone out, when the design or the check's verdicts changed (a selection alone
+        changes nothing there); edits arriving meanwhile join it."""
         shown = (session.state.design, colours.status_from_violations(session.violations))
         if shown[0] is shown_last[0] and shown[1] == shown_last[1]:
             return
@@ -300,10 +296,10 @@ def build_app(session, server=None, view_mode: str = "auto"):
             state.flush()
         except (InvalidInputError, StitchSwitchError, OSError) as exc:
             state.message = f"Error: {exc}"
-        if state.view_mode == "server" and pending["scene"] is None:
+        if state.view_mode == "server":
             # the frame follows the readout, its outlines those of the last check (a check that
             # changes their verdicts has the frame rendered again)
-            pending["scene"] = asyncio.get_event_loop().call_later(PANEL_WRITE_S, push_scene)
+            schedule_scene()
         # slider steps that arrive meanwhile join the pending check, which takes the latest design
         if pending["check"] is None:
             pending["check"] = asyncio.get_event_loop().call_later(0.001, check_later)

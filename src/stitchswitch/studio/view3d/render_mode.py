@@ -40,13 +40,11 @@ def server_renderer(window_class=None) -> str:
     return found.group(1).strip() if found else ""
 
 
-def choose(mode: str, renderer=None) -> str:
+def choose(mode: str, renderer=server_renderer) -> str:
     """``browser`` or ``server`` for the requested ``mode`` (one of ``MODES``); ``auto`` looks
-    at ``renderer``: a name, or a callable giving it (default ``server_renderer``), called
-    only for ``auto``."""
+    at the renderer name ``renderer()`` gives, called only for ``auto``."""
     if mode not in MODES:
         raise ValueError(f"view mode {mode!r}: not one of {', '.join(MODES)}")
     if mode != "auto":
         return mode
-    name = (renderer or server_renderer)() if renderer is None or callable(renderer) else renderer
-    return "server" if is_software(name) else "browser"
+    return "server" if is_software(renderer()) else "browser"
