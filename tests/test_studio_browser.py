@@ -264,6 +264,11 @@ def test_either_view_follows_the_fill_slider(tmp_path, mode):
                 page.keyboard.press("ArrowRight")
             wait_scene(page, loads)
             page.wait_for_function(f"!document.querySelector('#readout').innerText.startsWith('h {h0} ')")
+            # the check panel catches up with the last step (rendered on the server, the check
+            # waits until the step's image has gone out)
+            page.wait_for_function("Number(document.querySelector('#readout-stamp').textContent)"
+                                   " > 0 && document.querySelector('#edits').textContent === "
+                                   "document.querySelector('#readout-stamp').textContent")
             page.wait_for_timeout(500)
             after = page.locator("#view3d").screenshot()
             assert after != before

@@ -62,18 +62,21 @@ def test_each_edit_pushes_its_image_as_soon_as_it_is_encoded(monkeypatch):
     app = FakeApp(encode_asks=3)
     delivery = FakeDelivery(app)
     monkeypatch.setattr(image_channel, "image_delivery", lambda protocol: delivery)
-    built, sent = [], []
+    built, sent, delivered = [], [], []
 
     async def run():
         view = FakeView(app)
         ch = ImageChannel(FakeServer(FakeProtocol(delivery)), view, "rw", lambda: built.append(1),
-                          lambda *t: sent.append(t))
+                          lambda *t: sent.append(t),
+                          lambda: delivered.append(list(delivery.pushed)))
         ch.send()
         assert view.updates == 1 and built == [1] and len(sent) == 1 and ch.sent == 1
-        assert delivery.pushed == []                # the encoder is still busy
+        assert delivery.pushed == [] and delivered == []    # the encoder is still busy
         await asyncio.sleep(0.1)
-        # asked again until the encoder had nothing left, then no more
+        # asked again until the encoder had nothing left, then no more; told once, after the
+        # image went out
         assert delivery.pushed == ["7"] * 3 and ch.polls == 3
+        assert delivered == [["7"] * 3]
         ch.loaded()                                 # nothing in flight: nothing happens
         ch.send()
         ch.send()                                   # a newer edit: its own frame, one poll chain
@@ -90,11 +93,12 @@ def test_polls_stop_after_their_limit(monkeypatch):
     monkeypatch.setattr(image_channel, "image_delivery", lambda protocol: delivery)
 
     async def run():
+        delivered = []
         ch = ImageChannel(FakeServer(FakeProtocol(delivery)), FakeView(app), "rw", lambda: None,
-                          lambda *t: None)
+                          lambda *t: None, lambda: delivered.append(ch.polls))
         ch.send()
         await asyncio.sleep(0.1)
-        assert ch.polls == 4
+        assert ch.polls == 4 and delivered == [4]       # given up: what waits on it goes on
 
     asyncio.run(run())
 
@@ -104,9 +108,11 @@ def test_no_page_connected_renders_nothing():
     view = FakeView(app)
     server = FakeServer(None)
     built = []
-    ch = ImageChannel(server, view, "rw", lambda: built.append(1), lambda *t: None)
+    delivered = []
+    ch = ImageChannel(server, view, "rw", lambda: built.append(1), lambda *t: None,
+                      lambda: delivered.append(1))
     ch.send()
-    assert built == [1] and view.updates == 0 and ch.sent == 0
+    assert built == [1] and view.updates == 0 and ch.sent == 0 and delivered == [1]
 
 
 def test_the_image_delivery_is_found_among_the_link_protocols():

@@ -80,6 +80,11 @@ SOFTWARE_GL_NO_MSAA = r"""(() => {
   };
   window.studioSoftwareGL = name;
 })();""" % render_mode.SOFTWARE_RENDERER
+#: the inspector's sliders follow their value at once: Vuetify eases the thumb and the track
+#: over 0.3 s after each step, and every eased frame is rasterized and composited again, on
+#: the CPU without a GPU, beside the server (the page's main-thread time per slider step:
+#: docs/studio.md, "Speed")
+SLIDER_NO_EASING = "#slider-d *, #slider-fill * { transition: none !important; }"
 #: the server-rendered view's images: JPEG quality at rest and while rotating or zooming, and
 #: full size while rotating (a software frame of the scene takes 13 ms: no need to shrink it)
 REMOTE_VIEW_QUALITY = {"still_quality": 90, "interactive_quality": 70, "interactive_ratio": 1}
@@ -122,7 +127,7 @@ def build_app(session, server=None, view_mode: str = "auto"):
     view_sync = PlotterSync(pl)
     session.autosave_later = True
     drag = {"id": None, "start": None}
-    pending = {"check": None, "scene": None}
+    pending = {"check": None, "scene": None, "check_after_image": False}
     camera = {"set": False}
     sync_counts: dict = {}
     shown_last = [None, None]         # the design and check verdicts the 3D view was sent
@@ -298,8 +303,16 @@ def build_app(session, server=None, view_mode: str = "auto"):
             state.message = f"Error: {exc}"
         if state.view_mode == "server":
             # the frame follows the readout, its outlines those of the last check (a check that
-            # changes their verdicts has the frame rendered again)
+            # changes their verdicts has the frame rendered again); the check waits until the
+            # frame's image has gone out (``image_delivered``): run between the render and
+            # the image's publication it held the image back by its own time
             schedule_scene()
+            if pending["scene"] is not None:
+                pending["check_after_image"] = True
+                return
+        schedule_check()
+
+    def schedule_check():
         # slider steps that arrive meanwhile join the pending check, which takes the latest design
         if pending["check"] is None:
             pending["check"] = asyncio.get_event_loop().call_later(0.001, check_later)
@@ -308,6 +321,12 @@ def build_app(session, server=None, view_mode: str = "auto"):
         pending["check"] = None
         session.refresh_check()
         push()
+
+    def image_delivered():
+        """The server-rendered frame's image has been published: a check it held back runs."""
+        if pending["check_after_image"]:
+            pending["check_after_image"] = False
+            schedule_check()
 
     def on_inverse():
         try:
@@ -402,6 +421,7 @@ def build_app(session, server=None, view_mode: str = "auto"):
 
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
         layout.title.set_text("stitchswitch studio")
+        client.Style(SLIDER_NO_EASING)
         with layout.toolbar:
             v3.VSpacer()
             with v3.VBtnToggle(v_model=("mode",), mandatory=True, density="compact"):
@@ -527,7 +547,8 @@ def build_app(session, server=None, view_mode: str = "auto"):
                     if state.view_mode == "server":
                         view = vtk_widgets.VtkRemoteView(pl.ren_win, ref=VIEW_REF,
                                                          **REMOTE_VIEW_QUALITY)
-                        channel = ImageChannel(server, view, pl.ren_win, build_view, scene_sent)
+                        channel = ImageChannel(server, view, pl.ren_win, build_view, scene_sent,
+                                               image_delivered)
                     else:
                         # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js
                         # has the new geometry, its arrays fetched), counted for the benchmark

@@ -9,7 +9,10 @@ left in progress (vtkWebApplication's ``GetHasImagesBeingProcessed``), so the pa
 frame of an edit a few milliseconds after it is rendered rather than half a second later.
 
 Rendering happens in the call, so nothing is in flight between edits: ``loaded`` (the local
-view's acknowledgement, which ``ViewChannel`` waits for) does nothing here.
+view's acknowledgement, which ``ViewChannel`` waits for) does nothing here. ``delivered`` is
+called once the edit's image has been published (or the polls gave up), so that work which
+would hold the event loop (the constraint check after a slider step) can wait until the
+image is on its way instead of holding up the polls.
 """
 from __future__ import annotations
 
@@ -34,15 +37,17 @@ def image_delivery(protocol):
 class ImageChannel:
     """``server``: the trame server; ``view``: its ``VtkRemoteView`` of ``render_window``;
     ``build``: called before each image to bring the render window up to date,
-    ``after_send(send_s, send_cpu_s)`` after it with the time the render and push took.
-    ``send()`` renders the current scene and pushes its image."""
+    ``after_send(send_s, send_cpu_s)`` after it with the time the render and push took;
+    ``delivered()`` once the image has been published. ``send()`` renders the current scene
+    and pushes its image."""
 
-    def __init__(self, server, view, render_window, build, after_send):
+    def __init__(self, server, view, render_window, build, after_send, delivered=lambda: None):
         self.server = server
         self.view = view
         self.render_window = render_window
         self.build = build
         self.after_send = after_send
+        self.delivered = delivered
         self.sent = 0                        # images rendered and pushed
         self.polls = 0                       # extra asks for an image still being encoded
         self._delivery = None
@@ -52,6 +57,7 @@ class ImageChannel:
         """Render the current scene and push its image."""
         self.build()
         if not self.server.protocol:
+            self.delivered()
             return
         t0, c0 = time.perf_counter(), time.process_time()
         self.view.update()
@@ -67,6 +73,7 @@ class ImageChannel:
             self._delivery = image_delivery(self.server.protocol)
         if (self._delivery is None or n >= MAX_POLLS
                 or not self._delivery.app.GetHasImagesBeingProcessed(self.render_window)):
+            self.delivered()
             return
         self._poll = asyncio.get_event_loop().call_later(POLL_S, self._push_newest, n + 1)
 
