@@ -25,18 +25,27 @@ def free_port() -> int:
 
 
 #: counts the images the server-rendered 3D view has loaded (``window.studioImageLoads``):
-#: trame-vtk's remote view shows each pushed image in an ``img`` inside ``#view3d``
+#: trame-vtk's remote view shows each pushed image in an ``img`` inside ``#view3d``; and
+#: collects the times the browser painted them (``window.studioImagePaints``, epoch ms: the
+#: Element Timing API's ``renderTime`` of each image, for which the ``img`` is marked)
 COUNT_VIEW_IMAGES = """(() => {
   const src = Object.getOwnPropertyDescriptor(HTMLImageElement.prototype, 'src');
   Object.defineProperty(HTMLImageElement.prototype, 'src', {
     configurable: true,
     get() { return src.get.call(this); },
     set(value) {
+      this.setAttribute('elementtiming', 'studio-image');
       this.addEventListener('load', () => {
         if (this.closest('#view3d')) window.studioImageLoads = (window.studioImageLoads || 0) + 1;
       }, {once: true});
       src.set.call(this, value);
     }});
+  window.studioImagePaints = [];
+  new PerformanceObserver((list) => {
+    for (const e of list.getEntries())
+      if (e.element && e.element.closest('#view3d'))
+        window.studioImagePaints.push(performance.timeOrigin + e.renderTime);
+  }).observe({type: 'element'});
 })();"""
 
 

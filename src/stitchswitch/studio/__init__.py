@@ -21,6 +21,8 @@ page (``app``, trame) only binds widgets to them.
 * ``view3d``: the 3D view: its scene and pyvista actors, where it is drawn (the browser's
   WebGL or VTK on the server) and how each edit reaches the page.
 * ``session``: ``Session``, everything the page shows, recomputed after each action.
+* ``check_timer``: ``CheckTimer``, when the check runs after an edit (at once; after a slider
+  step whose 3D view is rendered on the server, once the page draws the step's image).
 * ``app``: the trame page and ``serve(session, port, host, open_browser, view_mode)``.
 
 trame, trame-vuetify and trame-vtk are the optional extra ``stitchswitch[studio]``; only

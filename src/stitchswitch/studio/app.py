@@ -25,8 +25,10 @@ from stitchswitch.errors import InvalidInputError, StitchSwitchError
 from stitchswitch.preview3d import colours
 from stitchswitch.reduced.design_space.inverse import InverseTarget
 from stitchswitch.studio import canvas, live_check
+from stitchswitch.studio.check_timer import CheckTimer
 from stitchswitch.studio.readout import profile_svg
 from stitchswitch.studio.view3d import render_mode
+from stitchswitch.studio.view3d.camera_fit import CameraFit
 from stitchswitch.studio.view3d.image_channel import ImageChannel
 from stitchswitch.studio.view3d.scene3d import PlotterSync
 from stitchswitch.studio.view3d.view_channel import ViewChannel
@@ -59,6 +61,9 @@ SCENE_DELAY_S = 0.15
 PANEL_WRITE_S = 0.005
 #: the page's acknowledgement that it has drawn the panel of an edit
 PANEL_SHOWN = "window.requestAnimationFrame(() => trigger('studio_panel_shown'))"
+#: the page's word that an image of the server-rendered view has loaded (the ``load`` of the
+#: view's ``img``, caught on its way down to it), in the frame that draws it (``CheckTimer``)
+VIEW_SHOWN = "window.requestAnimationFrame(() => trigger('studio_view_shown'))"
 #: run by the page before the 3D view makes its WebGL context: on a software WebGL renderer
 #: (no GPU: SwiftShader, llvmpipe) the view's context is made without multisampling. vtk.js
 #: asks for the browser's default, antialiased (4x multisampled) drawing buffer, and a
@@ -124,11 +129,14 @@ def build_app(session, server=None, view_mode: str = "auto"):
         # single-sampled: a software rasterizer spends 3x the frame on 8 samples (42 ms
         # against 13 ms for the 40-patch scene)
         pl.ren_win.SetMultiSamples(0)
+        # three lights instead of pyvista's light kit of five, for the same look: a software
+        # rasterizer lights every pixel once per light (17 against 14 ms for the frame)
+        pl.enable_3_lights()
     view_sync = PlotterSync(pl)
     session.autosave_later = True
     drag = {"id": None, "start": None}
-    pending = {"check": None, "scene": None, "check_after_image": False}
-    camera = {"set": False}
+    pending = {"scene": None}
+    camera = CameraFit(pl)
     sync_counts: dict = {}
     shown_last = [None, None]         # the design and check verdicts the 3D view was sent
 
@@ -174,10 +182,8 @@ def build_app(session, server=None, view_mode: str = "auto"):
         t0, c0 = time.perf_counter(), time.process_time()
         sync_counts.clear()
         sync_counts.update(view_sync.sync(session.scene3d, session.violations))
-        if not camera["set"]:
-            pl.view_isometric()
-            pl.reset_camera()
-            camera["set"] = True
+        if not camera.fitted:
+            camera.fit()
         session.timings_s["sync_s"] = time.perf_counter() - t0
         session.timings_s["sync_cpu_s"] = time.process_time() - c0
 
@@ -304,29 +310,19 @@ def build_app(session, server=None, view_mode: str = "auto"):
         if state.view_mode == "server":
             # the frame follows the readout, its outlines those of the last check (a check that
             # changes their verdicts has the frame rendered again); the check waits until the
-            # frame's image has gone out (``image_delivered``): run between the render and
-            # the image's publication it held the image back by its own time
+            # page draws the frame's image (``CheckTimer``)
             schedule_scene()
             if pending["scene"] is not None:
-                pending["check_after_image"] = True
+                checks.after_image()
                 return
-        schedule_check()
+        checks.soon()
 
-    def schedule_check():
-        # slider steps that arrive meanwhile join the pending check, which takes the latest design
-        if pending["check"] is None:
-            pending["check"] = asyncio.get_event_loop().call_later(0.001, check_later)
-
-    def check_later():
-        pending["check"] = None
+    def check_now():
         session.refresh_check()
         push()
 
-    def image_delivered():
-        """The server-rendered frame's image has been published: a check it held back runs."""
-        if pending["check_after_image"]:
-            pending["check_after_image"] = False
-            schedule_check()
+    checks = CheckTimer(check_now)
+    ctrl.trigger("studio_view_shown")(checks.view_shown)
 
     def on_inverse():
         try:
@@ -543,12 +539,14 @@ def build_app(session, server=None, view_mode: str = "auto"):
                         html.Div(v_html=(key,), style=CANVAS_LAYER)
                 if state.view_mode == "browser":
                     client.Script(SOFTWARE_GL_NO_MSAA)      # before the view makes its context
-                with html.Div(style="flex:1; min-width:0", id="view3d"):
+                with html.Div(style="flex:1; min-width:0", id="view3d",
+                              __events=[("image_loaded", "load.capture")],
+                              image_loaded=VIEW_SHOWN if state.view_mode == "server" else None):
                     if state.view_mode == "server":
                         view = vtk_widgets.VtkRemoteView(pl.ren_win, ref=VIEW_REF,
                                                          **REMOTE_VIEW_QUALITY)
                         channel = ImageChannel(server, view, pl.ren_win, build_view, scene_sent,
-                                               image_delivered)
+                                               checks.image_published)
                     else:
                         # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js
                         # has the new geometry, its arrays fetched), counted for the benchmark

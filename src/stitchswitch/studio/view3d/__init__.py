@@ -10,4 +10,6 @@ edit reaches the page.
   flight, the newest wins; the full scene state once edits pause).
 * ``image_channel``: ``ImageChannel``, the remote view's image of each edit, pushed as soon
   as the encoder has it.
+* ``camera_fit``: ``CameraFit``, the whole design in view at the size the page gives the view,
+  until the user moves the camera.
 """
