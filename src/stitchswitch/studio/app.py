@@ -55,9 +55,9 @@ ZOOM_STEP = 1.25
 #: build and serialization would hold the server's event loop before the panel's message is
 #: written, and the browser's WebGL render of the scene would hold the frame that shows it
 SCENE_DELAY_S = 0.15
-#: a server-rendered frame waits this long after the readout's or the panel's message: writing
-#: it to the websocket takes the event loop a few turns, and a render started before that holds
-#: it (the readout was shown 66-69 ms after a slider step instead of 42-47, median)
+#: a server-rendered frame waits this long after the panel's message: writing it to the
+#: websocket takes the event loop a few turns, and a render started before that holds it (a
+#: readout sent so was shown 66-69 ms after a slider step instead of 42-47, median)
 PANEL_WRITE_S = 0.005
 #: the page's acknowledgement that it has drawn the panel of an edit
 PANEL_SHOWN = "window.requestAnimationFrame(() => trigger('studio_panel_shown'))"
@@ -299,22 +299,29 @@ def build_app(session, server=None, view_mode: str = "auto"):
         p = session.state.selected_patch()
         if p is None or (p.diameter_mm, p.fill, p.state) == (float(diameter), float(fill), patch_state):
             return
-        try:            # the readout first (the map answers at once), then the check and 3D view
+        try:            # the readout (the map answers at once), then the check and 3D view
             session.edit(p.id, refresh=False, diameter_mm=float(diameter), fill=float(fill),
                          state=patch_state)
             push_readout()
             state.readout_stamp = session.state.changed
-            state.flush()
         except (InvalidInputError, StitchSwitchError, OSError) as exc:
             state.message = f"Error: {exc}"
+            checks.soon()
+            return
         if state.view_mode == "server":
-            # the frame follows the readout, its outlines those of the last check (a check that
-            # changes their verdicts has the frame rendered again); the check waits until the
-            # page draws the frame's image (``CheckTimer``)
-            schedule_scene()
+            # rendered on the server, the frame is rendered at once and its message carries the
+            # readout: a frame rendered after the readout's message shared the two cores with
+            # the page drawing the readout, and came 15 ms later (docs/studio.md, "Speed"). Its
+            # outlines are those of the last check (a check that changes their verdicts has the
+            # frame rendered again); the check waits until the page draws the frame's image
+            # (``CheckTimer``)
             if pending["scene"] is not None:
-                checks.after_image()
-                return
+                pending["scene"].cancel()
+            checks.after_image()
+            push_scene()
+            state.flush()
+            return
+        state.flush()
         checks.soon()
 
     def check_now():
