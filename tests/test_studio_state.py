@@ -107,6 +107,26 @@ def test_readout_follows_the_map():
     assert not out.in_domain and "outside the map's domain" in out.message
 
 
+@pytest.mark.parametrize("d, fill", [(60.0, 0.8), (30.0, 0.6), (90.0, 0.5)])
+def test_the_plotted_profile_is_the_profile_to_a_quarter_pixel(d, fill):
+    """The plot's polyline drops nodes, none of the profile's nodes (or their mirror images) is
+    further than a quarter of the plot's pixel from it (and the SVG's 0.01 mm rounding)."""
+    from shapely.geometry import LineString, Point
+
+    from stitchswitch.studio.readout import HEIGHT_PX, WIDTH_PX
+
+    r = readout(default_map(), d, fill)
+    svg = profile_svg(r.r_mm, r.z_mm)
+    view = [float(v) for v in re.search(r'viewBox="([^"]+)"', svg).group(1).split()]
+    mm_per_px = max(view[2] / WIDTH_PX, view[3] / HEIGHT_PX)
+    pts = np.array([[float(v) for v in p.split(",")]
+                    for p in re.search(r'data-profile="1" points="([^"]+)"', svg).group(1).split()])
+    assert len(pts) < len(r.r_mm)
+    line = LineString(pts)
+    far = max(line.distance(Point(sx * a, -b)) for a, b in zip(r.r_mm, r.z_mm) for sx in (1, -1))
+    assert far <= 0.25 * mm_per_px + 0.01
+
+
 def test_check_is_the_library_check(empty):
     s = StudioState(empty)
     pid = s.add_patch(centre(empty))
