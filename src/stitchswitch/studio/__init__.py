@@ -23,6 +23,8 @@ page (``app``, trame) only binds widgets to them.
 * ``session``: ``Session``, everything the page shows, recomputed after each action.
 * ``check_timer``: ``CheckTimer``, when the check runs after an edit (at once; after a slider
   step whose 3D view is rendered on the server, once the page draws the step's image).
+* ``heap``: ``freeze_long_lived``, the server's long-lived objects kept out of the garbage
+  collector's full collections (each held the event loop about 80 ms).
 * ``app``: the trame page and ``serve(session, port, host, open_browser, view_mode)``.
 
 trame, trame-vuetify and trame-vtk are the optional extra ``stitchswitch[studio]``; only

@@ -24,7 +24,7 @@ import time
 from stitchswitch.errors import InvalidInputError, StitchSwitchError
 from stitchswitch.preview3d import colours
 from stitchswitch.reduced.design_space.inverse import InverseTarget
-from stitchswitch.studio import canvas, live_check
+from stitchswitch.studio import canvas, heap, live_check
 from stitchswitch.studio.check_timer import CheckTimer
 from stitchswitch.studio.readout import profile_svg
 from stitchswitch.studio.view3d import render_mode
@@ -577,4 +577,5 @@ def serve(session, port: int = 0, host: str = "127.0.0.1", open_browser: bool = 
           view_mode: str = "auto") -> None:
     """Run the page until Ctrl-C (trame prints the URL)."""
     server = build_app(session, view_mode=view_mode)
+    heap.freeze_long_lived()
     server.start(port=port, host=host, open_browser=open_browser, show_connection_info=True)
