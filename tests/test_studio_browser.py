@@ -265,7 +265,7 @@ def test_either_view_follows_the_fill_slider(tmp_path, mode):
             wait_scene(page, loads)
             page.wait_for_function(f"!document.querySelector('#readout').innerText.startsWith('h {h0} ')")
             # the check panel catches up with the last step (rendered on the server, the check
-            # waits until the step's image has gone out)
+            # waits until the page draws the step's image)
             page.wait_for_function("Number(document.querySelector('#readout-stamp').textContent)"
                                    " > 0 && document.querySelector('#edits').textContent === "
                                    "document.querySelector('#readout-stamp').textContent")

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from shapely.geometry import LineString
 
 from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.design_space.design_map import KEYPOINTS
@@ -80,8 +81,6 @@ def profile_svg(r_mm, z_mm) -> str:
     """SVG of the profile (r_mm, z_mm) and its mirror image (-r, z); empty without a profile."""
     if r_mm is None or z_mm is None or len(r_mm) < 2:
         return ""
-    from shapely.geometry import LineString
-
     r, z = np.asarray(r_mm, dtype=float), np.asarray(z_mm, dtype=float)
     x0, x1 = -r.max() - PAD_MM, r.max() + PAD_MM
     y0, y1 = min(z.min(), 0.0) - PAD_MM, max(z.max(), 0.0) + PAD_MM
