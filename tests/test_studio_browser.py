@@ -277,3 +277,74 @@ def test_either_view_follows_the_fill_slider(tmp_path, mode):
             drag(page, (cx, cy), (cx + 120, cy + 40), steps=8)
             page.wait_for_timeout(1000)
             assert page.locator("#view3d").screenshot() != after
+
+
+#: the rows and columns at the 3D view's edges left out of ``design_margins``
+EDGE_PX = 6
+
+
+def design_margins(png: bytes) -> tuple[int, int, int, int]:
+    """Pixels between the drawn design (anything not the white background) and the image's
+    left, top, right and bottom edges, less ``EDGE_PX`` (the toolbar's shadow falls on the
+    view's top rows); zero where the design runs off an edge."""
+    import io
+
+    from PIL import Image
+
+    img = np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))[EDGE_PX:-EDGE_PX, EDGE_PX:-EDGE_PX]
+    drawn = (img < 235).any(axis=2)
+    rows, cols = np.where(drawn.any(axis=1))[0], np.where(drawn.any(axis=0))[0]
+    assert rows.size and cols.size, "the 3D view is blank"
+    h, w = drawn.shape
+    return int(cols[0]), int(rows[0]), int(w - 1 - cols[-1]), int(h - 1 - rows[-1])
+
+
+def wait_picture(page, accept, timeout_ms: int = 20000) -> bytes:
+    """The 3D view's screenshot once ``accept(png)`` holds (the camera's fit reaches the page
+    a moment after its size), or the last one, which fails ``accept``."""
+    png = page.locator("#view3d").screenshot()
+    for _ in range(timeout_ms // 250):
+        if accept(png):
+            break
+        page.wait_for_timeout(250)
+        png = page.locator("#view3d").screenshot()
+    return png
+
+
+@pytest.mark.parametrize("mode", ["browser", "server"])
+def test_the_3d_view_shows_the_whole_design_at_the_size_the_page_gives(tmp_path, mode):
+    """The camera is fitted to the page's view: the whole design in view at first and after
+    the window is made narrower; once the user has turned the view it stays as they left it
+    through changes of size, and "Fit 3D" brings back the fitted view."""
+    from stitchswitch.demos.tennis_pocket import build
+
+    path = tmp_path / "tennis-pocket.json"
+    save_design(build().design, path)
+    inside = lambda png: min(design_margins(png)) > 0                  # noqa: E731
+    with studio_server(path, view=mode) as (url, _):
+        with browser_page(url) as page:
+            assert view_mode(page) == mode
+            wait_scene(page, 0)
+            assert inside(wait_picture(page, inside)), design_margins(
+                page.locator("#view3d").screenshot())
+            page.set_viewport_size({"width": 1000, "height": 850})
+            fitted = wait_picture(page, inside)
+            assert inside(fitted), design_margins(fitted)
+            page.wait_for_timeout(1000)
+            fitted = page.locator("#view3d").screenshot()
+            box = page.locator("#view3d").bounding_box()
+            cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+            drag(page, (cx, cy), (cx + 120, cy + 40), steps=8)
+            turned = wait_picture(page, lambda png: png != fitted)
+            assert turned != fitted
+            page.set_viewport_size({"width": 1100, "height": 850})
+            page.wait_for_timeout(1500)
+            page.set_viewport_size({"width": 1000, "height": 850})
+            page.wait_for_timeout(1500)
+            assert page.locator("#view3d").screenshot() != fitted     # still the user's view
+            page.locator("#fit-3d").click()
+            # the fitted view's outline again (vtk.js leaves its lights where the rotation put
+            # them until the next one: the shading may differ in the browser's WebGL view)
+            same = lambda png: design_margins(png) == design_margins(fitted)   # noqa: E731
+            back = wait_picture(page, same)
+            assert design_margins(back) == design_margins(fitted)

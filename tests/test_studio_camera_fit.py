@@ -75,3 +75,50 @@ def test_the_same_size_again_fits_nothing():
     fit.fit()
     pl.ren_win.SetSize(600, 450)
     assert fit.fits == 1
+
+
+def test_the_page_size_of_a_webgl_view_fits_the_camera_to_it():
+    """Drawn by the browser, the view's window on the server is never shown: the page's size
+    of it reaches the server (``page_size``), and the pose sent back (``pose``) is the fit for
+    that size, the one a server window of that size would have."""
+    pl = plotter()
+    fit = CameraFit(pl)
+    fit.fit()
+    fit.page_size(510.4, 766.0)
+    assert tuple(pl.ren_win.GetSize()) == (510, 766) and fit.fits == 2
+    fresh = plotter((510, 766))
+    CameraFit(fresh).fit()
+    pose = fit.pose()
+    assert pose["position"] == pytest.approx(list(fresh.camera.position))
+    assert pose["focalPoint"] == pytest.approx(list(fresh.camera.focal_point))
+    assert pose["viewUp"] == pytest.approx(list(fresh.camera.up))
+    assert pose["viewAngle"] == pytest.approx(fresh.camera.view_angle)
+    assert pose["centerOfRotation"] == pose["focalPoint"]
+
+
+def test_a_camera_released_to_the_user_is_not_fitted_again_until_fit():
+    """The page's camera turned by the user (the server's does not follow it): a change of the
+    page's size leaves it; an explicit fit takes it back."""
+    pl = plotter()
+    fit = CameraFit(pl)
+    fit.fit()
+    fit.release()
+    assert fit.released
+    fit.page_size(510, 766)
+    assert fit.fits == 1
+    fit.fit()
+    assert not fit.released and fit.fits == 2
+    fit.page_size(600, 450)
+    assert fit.fits == 3
+
+
+@pytest.mark.parametrize("size", [(600, 450), (510, 766), (310, 766)])
+def test_the_fit_leaves_room_on_either_side_and_fills_the_view(size):
+    """Fitted on the screen, not by the bounding sphere (which left the plane 2 px from the edge
+    of a 310 px wide view, and 3 px of a 510 px one): room on both sides, and the plane spans
+    most of the view's width."""
+    pl = plotter(size)
+    CameraFit(pl).fit()
+    _, (c0, c1), width = extent(pl)
+    assert min(c0, width - 1 - c1) >= 0.03 * width
+    assert c1 - c0 >= 0.85 * width

@@ -93,6 +93,11 @@ SLIDER_NO_EASING = "#slider-d *, #slider-fill * { transition: none !important; }
 #: the server-rendered view's images: JPEG quality at rest and while rotating or zooming, and
 #: full size while rotating (a software frame of the scene takes 13 ms: no need to shrink it)
 REMOTE_VIEW_QUALITY = {"still_quality": 90, "interactive_quality": 70, "interactive_ratio": 1}
+#: the state key of the page's size of the WebGL view (``client.SizeObserver``: its size, CSS
+#: px, and the pixel ratio)
+VIEW_SIZE = "view3d_size"
+#: the WebGL view's interactor events that end a rotation, pan or zoom by the user
+USER_CAMERA_EVENTS = ["EndAnimation", "EndMouseWheel"]
 #: the 3D view's name on the page (its full scene state is the state key ``scene_`` + it)
 VIEW_REF = "studio_view"
 READOUT_KEYS = (("h", "h_mm"), ("r_a", "r_a_mm"), ("z_a", "z_a_mm"), ("r_b", "r_b_mm"),
@@ -138,6 +143,7 @@ def build_app(session, server=None, view_mode: str = "auto"):
     drag = {"id": None, "start": None}
     pending = {"scene": None}
     camera = CameraFit(pl)
+    page_camera = {"fit": None}       # the fit the WebGL view's camera was last given
     sync_counts: dict = {}
     shown_last = [None, None]         # the design and check verdicts the 3D view was sent
 
@@ -363,6 +369,23 @@ def build_app(session, server=None, view_mode: str = "auto"):
     def scene_loaded():
         """The page has loaded the scene in flight (vtk.js's afterSceneLoaded)."""
         channel.loaded()
+        if page_camera["fit"] != camera.fits:
+            push_page_camera()
+
+    def fit_3d() -> None:
+        """The "Fit 3D" button: the camera back on the whole design."""
+        camera.fit()
+        if state.view_mode == "server":
+            channel.send()
+        else:
+            push_page_camera()
+
+    def push_page_camera() -> None:
+        """The camera's latest fit to the page's WebGL view, which takes the server's camera
+        from the first scene only (vtk.js's synchronizer sets a camera once)."""
+        if camera.fitted and not camera.released and page_camera["fit"] != camera.fits:
+            page_camera["fit"] = camera.fits
+            server.js_call(VIEW_REF, "setCamera", camera.pose())
 
     @ctrl.trigger("studio_file")
     def exported_file(name):
@@ -443,6 +466,7 @@ def build_app(session, server=None, view_mode: str = "auto"):
             v3.VBtn("+", click=guarded(lambda: session.zoom(ZOOM_STEP)), id="zoom-in", size="small")
             html.Span("{{ dirty ? 'unsaved changes' : 'saved' }}", classes="text-caption mx-2",
                       id="dirty")
+            v3.VBtn("Fit 3D", click=fit_3d, id="fit-3d", size="small")
             html.Span("3D view: {{ view_mode == 'server' ? 'rendered on the server' : "
                       "'WebGL in the browser' }}", classes="text-caption mx-2", id="view-mode")
             html.Span("{{ view_mode }}", id="view-mode-key", style="display:none")
@@ -559,14 +583,27 @@ def build_app(session, server=None, view_mode: str = "auto"):
                         # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js
                         # has the new geometry, its arrays fetched), counted for the benchmark
                         # and tests
-                        view = vtk_widgets.VtkLocalView(
-                            pl.ren_win, ref=VIEW_REF,
-                            before_scene_loaded="window.studioSceneBusy = true",
-                            after_scene_loaded="window.studioSceneBusy = false; "
-                                               "window.studioSceneLoads = (window.studioSceneLoads"
-                                               " || 0) + 1; trigger('studio_scene_loaded')")
+                        # the page's size of the view (the fit is made for it) and the end of
+                        # the user's rotations and zooms (no fit after them): ``CameraFit``
+                        with client.SizeObserver(VIEW_SIZE):
+                            view = vtk_widgets.VtkLocalView(
+                                pl.ren_win, ref=VIEW_REF,
+                                interactor_events=("events", USER_CAMERA_EVENTS),
+                                **{event: camera.release for event in USER_CAMERA_EVENTS},
+                                before_scene_loaded="window.studioSceneBusy = true",
+                                after_scene_loaded="window.studioSceneBusy = false; "
+                                                   "window.studioSceneLoads = (window."
+                                                   "studioSceneLoads || 0) + 1; "
+                                                   "trigger('studio_scene_loaded')")
                         channel = ViewChannel(server, view, pl.ren_win, VIEW_REF, build_view,
                                               scene_sent)
+
+                        @state.change(VIEW_SIZE)
+                        def on_view_size(**_):
+                            size = (state[VIEW_SIZE] or {}).get("size") or {}
+                            if size.get("width") and size.get("height"):
+                                camera.page_size(size["width"], size["height"])
+                                push_page_camera()
                     ctrl.view_reset_camera = view.reset_camera
     push_panel()
     push_scene()
