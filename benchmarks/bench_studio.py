@@ -35,7 +35,10 @@ them too (a lighter step than a user's).
   view's new image, the ``renderTime`` the Element Timing API reports for it (the time the
   frame with the image was presented). ``slider_drawn``'s two animation frames are a proxy for
   that moment; for an image the browser reports it itself, and it comes about one frame before
-  the proxy. A WebGL canvas has no such report.
+  the proxy. A WebGL canvas has no such report. A slider step's image is a draft at half the
+  view's width and height (``studio.view3d.image_channel``); ``slider_sharp``: the same step
+  until the browser painted the full-size image that follows once the slider rests (0.3 s).
+  ``kB received`` and ``browser task`` count both images.
 
 A slider step's readout, check panel and 3D view are watched together in the page
 (``WATCH_STEP``), each stamped when it first shows the step, on the clock Python's
@@ -162,7 +165,9 @@ def _wait_scene(page, above: int, loads: int) -> None:
 #: the clock Python's ``time.time`` reads too) and the 3D view's frame as drawn two animation
 #: frames after it is loaded (as ``NEXT_FRAME``); with ``painted`` (an image pushed by the
 #: server), also the time the browser painted the view's new image (``studioImagePaints``,
-#: studio_driver.COUNT_VIEW_IMAGES); ``window.studioMarks.done`` when all are in.
+#: studio_driver.COUNT_VIEW_IMAGES) and the time it painted the first full-size one (``sharp``:
+#: a dragged slider's images are drafts until it rests); ``window.studioMarks.done`` when all
+#: are in.
 #: The conditions are watched together, so one that comes later (a check sent after the
 #: view) does not delay another's stamp.
 WATCH_STEP = """([before, loadsExpr, loads, busy, painted]) => {
@@ -180,8 +185,13 @@ WATCH_STEP = """([before, loadsExpr, loads, busy, painted]) => {
       requestAnimationFrame(() => requestAnimationFrame(() => { marks.drawn = now(); }));
     }
     if (painted && marks.scene && !marks.painted)
-      marks.painted = window.studioImagePaints.find(t => t >= start);
-    if (marks.readout && marks.check && marks.drawn && (marks.painted || !painted))
+      marks.painted = (window.studioImagePaints.find(([t]) => t >= start) || [])[0];
+    if (painted && marks.painted && !marks.sharp) {
+      const img = document.querySelector('#view3d img');
+      const full = Math.round(img.clientWidth * devicePixelRatio) - 1;
+      marks.sharp = (window.studioImagePaints.find(([t, w]) => t >= start && w >= full) || [])[0];
+    }
+    if (marks.readout && marks.check && marks.drawn && (marks.sharp || !painted))
       marks.done = true;
     else requestAnimationFrame(poll);
   };
@@ -252,7 +262,7 @@ def measure(runs: int, alternate: bool = False, where: str = "auto") -> dict:
                 thumb.focus()
                 task, received = BrowserTime(page), Received(page)
                 slider, readout, check, server, slider_task, move_task = [], [], [], [], [], []
-                drawn, painted, kbytes, renders = [], [], [], []
+                drawn, painted, sharp, kbytes, renders = [], [], [], [], []
                 for k in range(runs):
                     time.sleep(SETTLE_S)
                     before, loads = _stamp(page, "#edits"), _loads(page)
@@ -269,6 +279,7 @@ def measure(runs: int, alternate: bool = False, where: str = "auto") -> dict:
                     drawn.append(marks["drawn"] / 1000.0 - t)
                     if mode == "server":
                         painted.append(marks["painted"] / 1000.0 - t)
+                        sharp.append(marks["sharp"] / 1000.0 - t)
                     slider_task.append(task() - b0)
                     kbytes.append((received.bytes - r0) / 1000.0)
                     renders.append(_renders(page) - n0)
@@ -309,6 +320,7 @@ def measure(runs: int, alternate: bool = False, where: str = "auto") -> dict:
             "first_scene": [first_scene], "slider_readout": readout,
             "slider_check": check, "slider": slider, "slider_drawn": drawn,
             "slider_painted": painted or [float("nan")],
+            "slider_sharp": sharp or [float("nan")],
             "  browser task (slider)": slider_task, "  kB received (slider)": kbytes,
             "  renders (slider)": renders,
             "frame_floor": floor or [float("nan")],

@@ -26,8 +26,9 @@ def free_port() -> int:
 
 #: counts the images the server-rendered 3D view has loaded (``window.studioImageLoads``):
 #: trame-vtk's remote view shows each pushed image in an ``img`` inside ``#view3d``; and
-#: collects the times the browser painted them (``window.studioImagePaints``, epoch ms: the
-#: Element Timing API's ``renderTime`` of each image, for which the ``img`` is marked)
+#: collects the times the browser painted them and their widths (``window.studioImagePaints``,
+#: ``[epoch ms, px]``: the Element Timing API's ``renderTime`` and ``naturalWidth`` of each
+#: image, for which the ``img`` is marked)
 COUNT_VIEW_IMAGES = """(() => {
   const src = Object.getOwnPropertyDescriptor(HTMLImageElement.prototype, 'src');
   Object.defineProperty(HTMLImageElement.prototype, 'src', {
@@ -44,7 +45,7 @@ COUNT_VIEW_IMAGES = """(() => {
   new PerformanceObserver((list) => {
     for (const e of list.getEntries())
       if (e.element && e.element.closest('#view3d'))
-        window.studioImagePaints.push(performance.timeOrigin + e.renderTime);
+        window.studioImagePaints.push([performance.timeOrigin + e.renderTime, e.naturalWidth]);
   }).observe({type: 'element'});
 })();"""
 
@@ -54,6 +55,14 @@ COUNT_VIEW_IMAGES = """(() => {
 #: (``COUNT_VIEW_IMAGES``)
 VIEW_UPDATES = {"browser": "(window.studioSceneLoads || 0)",
                 "server": "(window.studioImageLoads || 0)"}
+
+
+#: whether the server-rendered view shows a full-size image, not a dragged slider's draft
+#: (``studio.view3d.image_channel``): the image's width is the view's in device pixels
+FULL_SIZE_IMAGE = """(() => {
+  const img = document.querySelector('#view3d img');
+  return !!img && img.naturalWidth >= Math.round(img.clientWidth * devicePixelRatio) - 1;
+})()"""
 
 
 def view_mode(page) -> str:

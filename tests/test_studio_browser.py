@@ -26,6 +26,7 @@ pytest.importorskip("trame_vtk")
 from stitchswitch.studio.canvas import view_of  # noqa: E402
 from studio_driver import (  # noqa: E402
     CHROMIUM,
+    FULL_SIZE_IMAGE,
     VIEW_UPDATES,
     browser_page,
     drag,
@@ -159,6 +160,8 @@ def test_studio_in_chromium(tmp_path):
                 page.keyboard.press("ArrowRight")
             page.wait_for_function(f"!document.querySelector('#readout').innerText.startsWith('h {h0} ')")
             wait_scene(page, loads)
+            if view_mode(page) == "server":         # the slider's drafts, then full size
+                page.wait_for_function(FULL_SIZE_IMAGE, timeout=10000)
             page.wait_for_timeout(500)
             assert readout_h(page) != h0
             assert page.locator("#view3d").screenshot() != before
@@ -269,6 +272,12 @@ def test_either_view_follows_the_fill_slider(tmp_path, mode):
             page.wait_for_function("Number(document.querySelector('#readout-stamp').textContent)"
                                    " > 0 && document.querySelector('#edits').textContent === "
                                    "document.querySelector('#readout-stamp').textContent")
+            if mode == "server":
+                # the steps' images are drafts at half size, and a full-size image follows
+                # once the slider rests
+                page.wait_for_function(FULL_SIZE_IMAGE, timeout=10000)
+                widths = page.evaluate("window.studioImagePaints.map(([t, w]) => w)")
+                assert min(widths) <= max(widths) // 2 + 1, widths
             page.wait_for_timeout(500)
             after = page.locator("#view3d").screenshot()
             assert after != before

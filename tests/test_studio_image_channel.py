@@ -21,12 +21,20 @@ class FakeApp:
 
 
 class FakeDelivery:
+    """trame-vtk's image delivery: the view's ratio and quality, set as its RPC sets them."""
+
     def __init__(self, app):
         self.app = app
         self.pushed = []
+        self.tracking_views = {"7": {"ratio": 1, "quality": 90}}
+        self.settings = []
 
     def get_global_id(self, render_window):
         return 7
+
+    def set_view_quality(self, view_id, quality, ratio=1):
+        self.tracking_views[view_id].update(quality=quality, ratio=ratio)
+        self.settings.append((quality, ratio))
 
     def push_render(self, view_id):
         self.pushed.append(view_id)
@@ -47,15 +55,20 @@ class FakeServer:
 
 
 class FakeView:
-    """``VtkRemoteView.update``: renders, hands the frame to the encoder, pushes what is ready."""
+    """``VtkRemoteView.update``: renders, hands the frame to the encoder, pushes what is ready;
+    ``ratios``: the delivery's ratio at each render (with a delivery)."""
 
-    def __init__(self, app):
+    def __init__(self, app, delivery=None):
         self.app = app
+        self.delivery = delivery
         self.updates = 0
+        self.ratios = []
 
     def update(self):
         self.updates += 1
         self.app.pending = self.app.encode_asks
+        if self.delivery is not None:
+            self.ratios.append(self.delivery.tracking_views["7"]["ratio"])
 
 
 def test_each_edit_pushes_its_image_as_soon_as_it_is_encoded(monkeypatch):
@@ -82,6 +95,56 @@ def test_each_edit_pushes_its_image_as_soon_as_it_is_encoded(monkeypatch):
         ch.send()                                   # a newer edit: its own frame, one poll chain
         await asyncio.sleep(0.1)
         assert view.updates == 3 and delivery.pushed == ["7"] * 6
+
+    asyncio.run(run())
+
+
+def test_a_dragged_sliders_drafts_are_followed_by_one_full_size_image(monkeypatch):
+    monkeypatch.setattr(image_channel, "STILL_AFTER_S", 0.05)
+    app = FakeApp(encode_asks=2)
+    delivery = FakeDelivery(app)
+    monkeypatch.setattr(image_channel, "image_delivery", lambda protocol: delivery)
+    built, sent, delivered = [], [], []
+
+    async def run():
+        view = FakeView(app, delivery)
+        ch = ImageChannel(FakeServer(FakeProtocol(delivery)), view, "rw", lambda: built.append(1),
+                          lambda *t: sent.append(t), lambda: delivered.append(view.updates),
+                          still_quality=90, draft_quality=70)
+        for _ in range(3):                           # three steps, closer than the pause
+            ch.send(draft=True)
+            await asyncio.sleep(0.02)
+        assert view.ratios == [image_channel.DRAFT_RATIO] * 3
+        assert delivery.settings == [(70, image_channel.DRAFT_RATIO)]     # set once
+        await asyncio.sleep(0.1)
+        # the pause: one full-size image at still quality, of the scene already built, not an
+        # edit's (no build, no timings)
+        assert view.ratios[3:] == [1.0] and delivery.settings[-1] == (90, 1.0)
+        assert built == [1] * 3 and len(sent) == 3 and ch.drafts == 3 and ch.sent == 4
+        assert delivered == [1, 2, 3]                # once per edit
+        ch.send(draft=True)
+        ch.send()                                    # a full-size edit: no image due after it
+        await asyncio.sleep(0.1)
+        assert view.ratios[4:] == [image_channel.DRAFT_RATIO, 1.0] and ch.sent == 6
+
+    asyncio.run(run())
+
+
+def test_an_edits_image_is_told_delivered_when_the_full_size_image_overtakes_it(monkeypatch):
+    monkeypatch.setattr(image_channel, "STILL_AFTER_S", 0.001)
+    monkeypatch.setattr(image_channel, "MAX_POLLS", 10 ** 6)
+    app = FakeApp(encode_asks=10)                   # the draft still encoding at the pause
+    delivery = FakeDelivery(app)
+    monkeypatch.setattr(image_channel, "image_delivery", lambda protocol: delivery)
+
+    async def run():
+        delivered = []
+        view = FakeView(app, delivery)
+        ch = ImageChannel(FakeServer(FakeProtocol(delivery)), view, "rw", lambda: None,
+                          lambda *t: None, lambda: delivered.append(view.updates))
+        ch.send(draft=True)
+        await asyncio.sleep(0.5)
+        assert view.ratios == [image_channel.DRAFT_RATIO, 1.0] and delivered == [2]
 
     asyncio.run(run())
 

@@ -90,8 +90,9 @@ SOFTWARE_GL_NO_MSAA = r"""(() => {
 #: the CPU without a GPU, beside the server (the page's main-thread time per slider step:
 #: docs/studio.md, "Speed")
 SLIDER_NO_EASING = "#slider-d *, #slider-fill * { transition: none !important; }"
-#: the server-rendered view's images: JPEG quality at rest and while rotating or zooming, and
-#: full size while rotating (a software frame of the scene takes 13 ms: no need to shrink it)
+#: the server-rendered view's images: JPEG quality at rest and while rotating or zooming (and
+#: of a dragged slider's drafts, ``ImageChannel``), and full size while rotating (a software
+#: frame of the scene alone takes 13 ms)
 REMOTE_VIEW_QUALITY = {"still_quality": 90, "interactive_quality": 70, "interactive_ratio": 1}
 #: the state key of the page's size of the WebGL view (``client.SizeObserver``: its size, CSS
 #: px, and the pixel ratio)
@@ -321,11 +322,13 @@ def build_app(session, server=None, view_mode: str = "auto"):
             # the page drawing the readout, and came 15 ms later (docs/studio.md, "Speed"). Its
             # outlines are those of the last check (a check that changes their verdicts has the
             # frame rendered again); the check waits until the page draws the frame's image
-            # (``CheckTimer``)
+            # (``CheckTimer``). The frame is a draft, a quarter of the pixels, until the
+            # slider rests (``ImageChannel``)
             if pending["scene"] is not None:
                 pending["scene"].cancel()
+                pending["scene"] = None
             checks.after_image()
-            push_scene()
+            channel.send(draft=True)
             state.flush()
             return
         state.flush()
@@ -577,8 +580,11 @@ def build_app(session, server=None, view_mode: str = "auto"):
                     if state.view_mode == "server":
                         view = vtk_widgets.VtkRemoteView(pl.ren_win, ref=VIEW_REF,
                                                          **REMOTE_VIEW_QUALITY)
-                        channel = ImageChannel(server, view, pl.ren_win, build_view, scene_sent,
-                                               checks.image_published)
+                        channel = ImageChannel(
+                            server, view, pl.ren_win, build_view, scene_sent,
+                            checks.image_published,
+                            still_quality=REMOTE_VIEW_QUALITY["still_quality"],
+                            draft_quality=REMOTE_VIEW_QUALITY["interactive_quality"])
                     else:
                         # the scene's synchronizations in the browser (afterSceneLoaded: vtk.js
                         # has the new geometry, its arrays fetched), counted for the benchmark
