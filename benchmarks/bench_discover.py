@@ -18,7 +18,11 @@ settings from the starting material, one worker, not told the source. Groups:
 * ``fem``: the finite-element shell reference with hoop bending and Poisson coupling;
 * ``pairs``: library effects on the small design at strengths where candidates pair up
   (``PAIRS``), for the proposal proof (which needs "indistinguishable" verdicts); scored
-  apart from the identification.
+  apart from the identification;
+* ``hetero``: noise proportional to the keypoint size (as ``null-hetero``) on prestretch_loss
+  and hoop_bending at 1x and on null data, each dataset fitted twice: with the default one
+  sigma per quantity and with ``relative_noise`` (the keypoints divided by their size relative
+  to the mean); scored apart, the two fits side by side.
 
 Scores. A library case counts 1 when the true effect is named, 1/2 when the verdict is
 "indistinguishable" and the group includes it (target >= 90 %). Beside it, each library case's
@@ -64,7 +68,10 @@ import time
 import numpy as np
 
 QUANT = ("h", "r_a", "z_a", "r_b", "z_b")
-GROUPS = ("lib", "null", "foreign", "small", "two", "fem", "pairs")
+GROUPS = ("lib", "null", "foreign", "small", "two", "fem", "pairs", "hetero")
+#: The ``hetero`` group: noise proportional to the keypoint size; each dataset is fitted twice,
+#: with one sigma per quantity (the default) and with ``relative_noise``; scored apart.
+HETERO = ("prestretch_loss", "hoop_bending", None)
 #: The ``pairs`` group: library effects on the small design (12 + 8) at strengths where the
 #: benchmark's candidates pair up (hoop_bending / tension_asymmetry, prestretch_loss /
 #: boundary_transition): material for the proposal proof, which needs "indistinguishable"
@@ -95,7 +102,7 @@ def _all_cases() -> list[dict]:
 
     groups = GROUPS
     out, seed = [], 400
-    base = {"noise": 1.0, "outliers": 0, "hetero": False, "design": "paper"}
+    base = {"noise": 1.0, "outliers": 0, "hetero": False, "design": "paper", "relative": False}
 
     def add(group, cid, source, values, **kw):
         nonlocal seed
@@ -133,6 +140,14 @@ def _all_cases() -> list[dict]:
             seen[name] = seen.get(name, 0) + 1
             tail = f"-{seen[name]}" if seen[name] > 1 else ""
             add("pairs", f"pair-{name}{tail}", name, [v], design="small")
+    if "hetero" in groups:
+        for name in HETERO:
+            values = [] if name is None else [_clip(name, 0.5 * sum(
+                LIBRARY[name].parameters[0].hidden))]
+            cid = f"hetero-{name}-x1" if name else "hetero-null"
+            add("hetero", cid, name, values, hetero=True)
+            # the same dataset (the same seed), fitted with relative_noise
+            add("hetero", cid + "-relative", name, values, hetero=True, relative=True, seed=seed)
     return out
 
 
@@ -234,13 +249,14 @@ def _gap(pred, clean, va):
     return np.mean(np.abs(pred[va] - clean[va]), axis=0)
 
 
-def _discover(designs, split, kp, title, effects=None):
+def _discover(designs, split, kp, title, effects=None, relative=False):
     from stitchswitch.validation.discovery.synthetic import START_MATERIAL
     from stitchswitch.validation.discovery.workflow import DiscoveryConfig, discover
     from stitchswitch.validation.measured import parse_measurements
 
     data = parse_measurements(_csv(designs, split, kp, title), title)
-    config = DiscoveryConfig(effects=tuple(effects) if effects else None)
+    config = DiscoveryConfig(effects=tuple(effects) if effects else None,
+                             relative_noise=relative)
     c0, t0 = time.process_time(), time.perf_counter()
     disc = discover(data, START_MATERIAL, config)
     return disc, time.process_time() - c0, time.perf_counter() - t0
@@ -306,7 +322,7 @@ def oracle_fit(case, designs, split, kp, clean) -> dict:
 
 def run_case(case: dict, proposal: bool = True, trials: int = 3) -> dict:
     designs, split, kp, clean = dataset(case)
-    disc, cpu, wall = _discover(designs, split, kp, case["id"])
+    disc, cpu, wall = _discover(designs, split, kp, case["id"], relative=case["relative"])
     s = disc.summary
     va = disc.split == "val"
     gap_b, gap_a = _gap(disc.before, clean, va), _gap(disc.after, clean, va)
@@ -333,7 +349,7 @@ def run_case(case: dict, proposal: bool = True, trials: int = 3) -> dict:
         out["detectability"] = detectability(case, designs, split, clean)
     if case["group"] in ("lib", "small"):
         out["oracle"] = oracle_fit(case, designs, split, kp, clean)
-    if proposal and s["verdict"] == "indistinguishable":
+    if proposal and s["verdict"] == "indistinguishable" and case["group"] != "hetero":
         out["proposal_trials"] = [_proposal_trial(case, designs, split, kp, s, t)
                                   for t in range(trials)]
     return out
@@ -443,6 +459,18 @@ def summarize(results: list) -> dict:
     ceiling = float(np.mean(powers)) if powers else float("nan")
     fd = [r["id"] for r in clean_groups if _false_discovery(r)]
     pairs = [r for r in results if r["group"] == "pairs"]
+    het = {r["id"]: r for r in results if r["group"] == "hetero"}
+
+    def brief(r):
+        return {"verdict": r["verdict"], "named": r["named"], "group": r["group_named"],
+                "fitted": list(r["fitted"].values()),
+                "gap_reduction": {q: _red(r["gap_before"][q], r["gap_after"][q])
+                                  for q in ("h", "r_a")},
+                "false_discovery": r["source"] is None and _false_discovery(r)}
+
+    relative = {cid: {"source": r["source"], "true": r["values"], "default": brief(r),
+                      "relative_noise": brief(het[cid + "-relative"])}
+                for cid, r in het.items() if not r["relative"] and cid + "-relative" in het}
     return {
         "library_cases": len(lib), "score": score,
         "accuracy": score / len(lib) if lib else float("nan"),
@@ -461,6 +489,7 @@ def summarize(results: list) -> dict:
                                if ident else float("nan") for q in ("h", "r_a")},
         "pairs": {r["id"]: {"verdict": r["verdict"], "named": r["named"],
                             "group": r["group_named"], "score": _score(r)} for r in pairs},
+        "relative_noise": relative,
         "two_effects": {r["id"]: [r["named"], r.get("second", []), r["unexplained"]]
                         for r in results if r["group"] == "two"},
         "proposal_trials": len(trials), "resolved": resolved,
@@ -525,6 +554,12 @@ def table(results: list, summary: dict) -> str:
               f"{100 * s['oracle_median_gap_reduction']['r_a']:.0f} %: what the noise leaves "
               "reachable",
               f"two effects: {s['two_effects']}",
+              *(f"noise proportional to the size, {cid} (true {v['source']} "
+                f"{', '.join(f'{x:g}' for x in v['true']) or '-'}): "
+                + "; ".join(f"{label} {_said(v[k])}" for label, k in
+                            (("one sigma per quantity", "default"),
+                             ("relative_noise", "relative_noise")))
+                for cid, v in s["relative_noise"].items()),
               "pairs (the proposal proof's material, not in the identification): " + ", ".join(
                   f"{k} {'named ' + str(v['named']) if v['named'] else v['verdict']}"
                   + (f" ({' / '.join(v['group'])})" if v["group"] else "")
@@ -542,6 +577,16 @@ def table(results: list, summary: dict) -> str:
     for k, v in s["targets"].items():
         lines.append(f"  {'PASS' if v else 'FAIL'}  {k}")
     return "\n".join(lines)
+
+
+def _said(b) -> str:
+    """A hetero case's verdict, fitted strength and gap reductions, in a few words."""
+    what = (f"named {b['named']} ({', '.join(f'{x:.3g}' for x in b['fitted'])})"
+            if b["named"] else "? " + " / ".join(b["group"]) if b["group"] else "none")
+    red = ", ".join(f"{q} {100 * v:.0f} %" for q, v in b["gap_reduction"].items()
+                    if v == v and b["named"])
+    return what + (f", gap reduced {red}" if red else "") + (
+        " (a false discovery)" if b["false_discovery"] else "")
 
 
 def _power(r) -> str:

@@ -69,6 +69,19 @@ def test_report_json_and_summary(case, tmp_path):
     assert check_discovery_dir(out) is True
 
 
+def test_relative_noise_is_passed_on_and_reported(case, tmp_path):
+    data, material = case
+    out = tmp_path / "rep"
+    r = CliRunner().invoke(cli, ["discover", str(data), "--material", str(material), *ARGS,
+                                 "--relative-noise", "--report", str(out), "--json"])
+    assert r.exit_code == 0, r.output
+    rep = json.loads(r.stdout)
+    assert rep["config"]["relative_noise"] is True
+    assert set(rep["relative_noise"]["mean_size_mm"]) == {"h", "r_a", "z_a", "r_b", "z_b"}
+    assert "proportional to the size" in rep["noise_floor"]["how"]
+    assert "Noise proportional to the keypoint size" in (out / "report.md").read_text()
+
+
 @pytest.mark.parametrize("extra, message", [
     ([], "give the data as DATA.csv"),
     (["--demo", "x.csv"], "--demo: runs the built-in data"),

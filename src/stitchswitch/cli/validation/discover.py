@@ -57,10 +57,14 @@ def _effects(value):
 @click.option("--huber", type=click.FloatRange(min=0.0, min_open=True), default=None,
               metavar="C", help="Robust fit: Huber's loss at C robust sigmas (default: least "
                                 "squares); the down-weighted rows are listed.")
+@click.option("--relative-noise", is_flag=True, default=False,
+              help="The noise of a keypoint is proportional to its size: fit the keypoints "
+                   "divided by their size relative to the mean (default: one sigma per "
+                   "quantity).")
 @click.option("--seed", type=int, default=0, show_default=True, metavar="N",
               help="Seed of the cross-validation folds and the evolution.")
 def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_out, workers,
-             folds, alpha, de_generations, huber, seed):
+             folds, alpha, de_generations, huber, relative_noise, seed):
     """Find where the model and the data disagree, name the missing effect, add it, recalibrate
     and show the gap on the validation rows.
 
@@ -88,7 +92,8 @@ def discover(data_arg, data_opt, demo, material_path, effects, report_dir, json_
     if not demo and len(given) != 1:
         raise options.InputError("give the data as DATA.csv (once), or use --demo")
     config = DiscoveryConfig(effects=_effects(effects), folds=folds, alpha=alpha,
-                             de_generations=de_generations, seed=seed, huber_c=huber)
+                             de_generations=de_generations, seed=seed, huber_c=huber,
+                             relative_noise=relative_noise)
     if report_dir is not None:
         check_discovery_dir(report_dir)
     json_file = None if json_out in (None, "-") else json_out
@@ -183,7 +188,9 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
     share = rep["systematic"]["share_explained"]
     lines.append("  noise floor (estimated) sigma: " + ", ".join(
         f"{q} {noise[q]:.2f}" for q in QUANTITIES) + " mm; share of the systematic residual "
-        "explained: " + ("n/a" if share is None else f"{100 * share:.0f} %"))
+        "explained: " + ("n/a" if share is None else f"{100 * share:.0f} %")
+        + ("; noise proportional to the keypoint size: sigma at the mean size"
+           if rep.get("relative_noise") else ""))
     if rep["proposal"]["designs"]:
         lines.append("")
         lines.append("next samples (in the order chosen; template: next_samples.csv "

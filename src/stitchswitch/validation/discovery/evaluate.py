@@ -212,5 +212,10 @@ class Evaluator:
             out.append((np.array([r[0] for r in res]), list(states)))
         return out
 
+    def to_mm(self, designs, keypoints) -> np.ndarray:
+        """``keypoints`` of ``designs`` as this evaluator returns them, in mm: unchanged
+        (``relative_noise.ScaledEvaluator`` returns size-scaled ones)."""
+        return np.asarray(keypoints, dtype=float)
+
     def n_uncertified(self, spec, x, designs) -> int:
         return sum(self._key(spec, x, d) in self.uncertified for d in designs)

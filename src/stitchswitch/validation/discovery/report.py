@@ -70,6 +70,7 @@ def report_dict(disc, data, start, start_label: str = "default") -> dict:
         "after_model": s["after_model"], "claims": s["claims"],
         "unexplained_residual": s["unexplained_residual"], "noise_floor": s["noise_floor"],
         "systematic": s["systematic"], "proposal": s["proposal"], "robust": s["robust"],
+        "relative_noise": s.get("relative_noise"),
         "data": {"path": data.path, "source": data.source, "synthetic": data.synthetic,
                  "provenance": provenance_statement(data), "sha256": data.sha256,
                  "n_train": s["n_train"], "n_val": s["n_val"]},
@@ -179,6 +180,13 @@ def _story(rep: dict) -> dict:
                    ", ".join(f"{q} {noise[q]:.2f}" for q in QUANTITIES) + " mm. Share of the "
                    "systematic residual explained: " +
                    ("n/a" if share is None else f"{100 * share:.0f} %") + ".")
+    rel = rep.get("relative_noise")
+    if rel:
+        after_text += (" Noise proportional to the keypoint size: the fits, errors (mm^2), tests "
+                       "and the noise floor are on the keypoints divided by their size relative "
+                       "to the mean (mean sizes " + ", ".join(
+                           f"{q} {rel['mean_size_mm'][q]:.2f}" for q in QUANTITIES) +
+                       " mm); the validation MAE and the figures are in mm.")
     down = rep["robust"]["down_weighted"]
     if down:
         after_text += (f" Robust fit (Huber, c = {rep['robust']['huber_c']:g} robust sigmas); "

@@ -33,11 +33,14 @@ __all__ = ["design_basis", "loo_r2", "systematic_test", "residual_analysis", "sm
            "not_shrunk", "CLAIM_SE"]
 
 
-def design_basis(d, p) -> np.ndarray:
-    """(n, 6) quadratic basis in standardized d and p."""
+def design_basis(d, p, like=None) -> np.ndarray:
+    """(n, 6) quadratic basis in d and p standardized by their own mean and standard deviation,
+    or by those of ``like`` ((d, p) of other designs: the basis a surface fitted there is
+    evaluated in)."""
     d, p = np.asarray(d, float), np.asarray(p, float)
-    u = (d - d.mean()) / (d.std() or 1.0)
-    v = (p - p.mean()) / (p.std() or 1.0)
+    d0, p0 = (d, p) if like is None else (np.asarray(like[0], float), np.asarray(like[1], float))
+    u = (d - d0.mean()) / (d0.std() or 1.0)
+    v = (p - p0.mean()) / (p0.std() or 1.0)
     return np.stack([np.ones_like(u), u, v, u * u, u * v, v * v], axis=1)
 
 

@@ -67,6 +67,11 @@ from stitchswitch.validation.discovery.fit import (
     jacobian,
     refine_estimate,
 )
+from stitchswitch.validation.discovery.relative_noise import (
+    SIZE_FLOOR_MM,
+    KeypointScale,
+    ScaledEvaluator,
+)
 from stitchswitch.validation.discovery.residuals import residual_analysis
 from stitchswitch.validation.discovery.robust import winsorize
 from stitchswitch.validation.discovery.signature import explain, signature
@@ -101,6 +106,10 @@ class DiscoveryConfig:
     with the same rule, at alpha / (number of candidates left)). ``branches``: follow each
     training design's equilibrium along the strength scans and evaluate a bistable design on the
     branch nearest its measured row (``fit.follow_branches``); False: cold solves only.
+    ``relative_noise``: the noise of a keypoint is proportional to its size (``relative_noise``:
+    every keypoint, measured and predicted, is divided by its size relative to the mean, a
+    smooth surface of the training rows' sizes; errors and the noise floor are then in mm at
+    the mean size); False: one sigma per quantity.
     ``profile_points``: scanned strengths whose coefficients are refitted with the strength held
     (``fit.scan_effect``; 0: the one-step correction only). ``profile_leaders``: each leader
     polished at full resolution at a non-zero strength is profiled along its strength and
@@ -123,6 +132,7 @@ class DiscoveryConfig:
     polish_max_nfev: int = 4
     propose: int = 5
     huber_c: float | None = None
+    relative_noise: bool = False
     forward: bool = True
     branches: bool = True
     profile_points: int = 0
@@ -302,8 +312,10 @@ def _candidate(name, spec, f, m_tr, cv, cv0, why, how, rss0, k0, m, config, ev, 
                          and cv.score_mm2 < cv0.score_mm2),
         n_parameters=spec.size, parameters=dict(f.parameters),
         effect_parameters=_effect_values(spec, f.x, name),
-        val_mae_before_mm={q: v["mae_mm"] for q, v in _metrics(before_va, m_va).items()},
-        val_mae_after_mm={q: v["mae_mm"] for q, v in _metrics(pred_va, m_va).items()},
+        val_mae_before_mm={q: v["mae_mm"] for q, v in
+                           _metrics(ev.to_mm(d_va, before_va), ev.to_mm(d_va, m_va)).items()},
+        val_mae_after_mm={q: v["mae_mm"] for q, v in
+                          _metrics(ev.to_mm(d_va, pred_va), ev.to_mm(d_va, m_va)).items()},
         signature=why, uncertified_solves=f.uncertified, fit_start=how,
         spec=spec, x=f.x, resolution_nodes=spec.start.n_nodes, refined=refined,
         zero_strength=zero, row_loss=cv.row_loss, cv_folds=cv.folds,
@@ -441,7 +453,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     d_all = np.array([r.diameter_mm for r in rows])
     p_all = np.array([r.fill for r in rows])
     split = np.array([r.split for r in rows])
-    measured = data.keypoints()
+    measured = measured_mm = data.keypoints()
     tr, va = split == "train", split == "val"
     designs = [(float(d), float(p)) for d, p in zip(d_all, p_all)]
     d_tr = [x for x, t in zip(designs, tr) if t]
@@ -450,6 +462,14 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     train_rows = [r for r, t in zip(rows, tr) if t]
     n_res = m_tr.size
     ev = Evaluator(executor, targets=dict(zip(d_tr, m_tr)) if config.branches else None)
+    sizes = None
+    if config.relative_noise:
+        # from here on every keypoint is size-scaled (``relative_noise``); the results are
+        # converted back to mm where they are reported
+        sizes = KeypointScale.from_rows(d_tr, m_tr)
+        ev = ScaledEvaluator(ev, sizes)
+        measured = measured / sizes(designs)
+        m_tr, m_va = measured[tr], measured[va]
     base = ModelSpec(start, None, BASE_FREE)
     screen = screen_spec(start, config.screen_nodes)
     lo, hi = base.bounds()
@@ -689,8 +709,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         "after_model": chosen.effect if chosen else None,
         "decision": reason,
         "ranking": [c.as_dict() for c in ranking],
-        "before": _metrics(before[va], m_va),
-        "after": _metrics(after[va], m_va),
+        "before": _metrics(ev.to_mm(d_va, before[va]), ev.to_mm(d_va, m_va)),
+        "after": _metrics(ev.to_mm(d_va, after[va]), ev.to_mm(d_va, m_va)),
         "starting_model": {
             "label": start_label, "free": list(base.free),
             "parameters": base_fit.parameters, "train_mse_mm2": base_fit.mse_mm2,
@@ -710,7 +730,13 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         "unexplained_residual": left,
         "noise_floor": {"sigma_mm": dict(zip(QUANTITIES, sigma)),
                         "how": "residual standard error of a quadratic surface in (d, p) fitted "
-                               "to the starting model's training residuals (no replicates)"},
+                               "to the starting model's training residuals (no replicates)"
+                               + ("; the residuals divided by the keypoint's size relative to "
+                                  "the mean: sigma at the mean size, proportional to the size"
+                                  if sizes else "")},
+        "relative_noise": None if sizes is None else {
+            "mean_size_mm": dict(zip(QUANTITIES, sizes.mean_mm.tolist())),
+            "size_floor_mm": SIZE_FLOOR_MM},
         "systematic": {"before_rms_mm": dict(zip(QUANTITIES, split0["systematic_rms_mm"])),
                        "after_rms_mm": dict(zip(QUANTITIES, split1["systematic_rms_mm"])),
                        "share_explained": explained},
@@ -722,5 +748,6 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         "config": config.as_dict(),
     }
     return Discovery(summary=summary, ranking=ranking, diameter_mm=d_all, fill=p_all, split=split,
-                     measured=measured, before=before, after=after, signatures=sigs,
+                     measured=measured_mm, before=ev.to_mm(designs, before),
+                     after=ev.to_mm(designs, after), signatures=sigs,
                      elapsed_s=time.perf_counter() - t0, solves=ev.calls)
