@@ -679,7 +679,7 @@ def test_energy_se_is_the_noise_spread_and_not_shrunk_allows_only_noise():
 
 
 def test_winsorize_is_hubers_pseudo_observation_step():
-    from stitchswitch.validation.discovery.robust import robust_scale, winsorize
+    from stitchswitch.validation.discovery.noise.robust import robust_scale, winsorize
 
     rng = np.random.default_rng(9)
     pred = np.zeros((400, 5))

@@ -6,7 +6,7 @@ import pytest
 
 from stitchswitch.validation.discovery.evaluate import Evaluator
 from stitchswitch.validation.discovery.fit import follow_branches, scan_values
-from stitchswitch.validation.discovery.relative_noise import (
+from stitchswitch.validation.discovery.noise.proportional import (
     SIZE_FLOOR_MM,
     KeypointScale,
     ScaledEvaluator,

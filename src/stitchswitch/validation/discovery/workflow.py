@@ -67,13 +67,13 @@ from stitchswitch.validation.discovery.fit import (
     jacobian,
     refine_estimate,
 )
-from stitchswitch.validation.discovery.relative_noise import (
+from stitchswitch.validation.discovery.noise.proportional import (
     SIZE_FLOOR_MM,
     KeypointScale,
     ScaledEvaluator,
 )
+from stitchswitch.validation.discovery.noise.robust import winsorize
 from stitchswitch.validation.discovery.residuals import residual_analysis
-from stitchswitch.validation.discovery.robust import winsorize
 from stitchswitch.validation.discovery.signature import explain, signature
 from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
 from stitchswitch.validation.measured import QUANTITIES, MeasuredData
