@@ -28,7 +28,7 @@ ARGS = {
     "sensitivity": ["sensitivity", "--workers", "1"],
     "discover": ["discover", "d.csv", "--effects", "hardening", "--folds", "2", "--workers", "1"],
     "fem-check": ["fem-check", "--designs", "40,0.8"],
-    "switch-force": ["switch-force", "-d", "40", "-p", "0.8", "--steps", "6"],
+    "switch-force": ["switch-force", "-d", "90", "-p", "0.6", "--elements", "16", "--steps", "12"],
     "bistability-map": ["bistability-map", "--diameters", "40,60", "--fills", "0.8"],
     "fem-solve": ["fem-solve", "-d", "40", "-p", "0.8", "--elements", "8"],
     "check": ["check", "design.json"],
