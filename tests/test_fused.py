@@ -8,8 +8,8 @@ import pytest
 from stitchswitch import DEFAULT_MATERIAL, Patch
 from stitchswitch.reduced.model import assembly
 from stitchswitch.reduced.model.discretization import make_grid
-from stitchswitch.reduced.model.terms import ALL_TERMS, variants
-from stitchswitch.reduced.model.terms.extra import gravity
+from stitchswitch.reduced.model.terms import ALL_TERMS, hardening, variants
+from stitchswitch.reduced.model.terms.extra import gravity, hoop_bending, natural_curvature
 from stitchswitch.reduced.solvers import continuation, fused, newton
 from stitchswitch.reduced.solvers.solve import DEFAULT_TOL
 
@@ -85,11 +85,48 @@ def test_fused_energy_is_infinite_outside_the_domain():
     assert fused.energy(r, z, coef) == np.inf
 
 
+EXTRA_TERMS = {
+    "hardening": hardening.with_weight(2.0, 5.0),
+    "natural_curvature": natural_curvature.term(0.08, 0.8),
+    "hoop_bending": hoop_bending.term(2.5),
+    "gravity": gravity.term(0.3, 0.8, 2.0),
+}
+
+
+@pytest.mark.parametrize("extra", [("hardening",), ("natural_curvature",), ("hoop_bending",),
+                                   ("gravity",), ("hardening", "natural_curvature", "hoop_bending", "gravity")],
+                         ids=lambda e: "+".join(e))
+@pytest.mark.parametrize("design", [(15.0, 0.6), (55.0, 1.0)])
+def test_fused_added_terms_are_the_term_kernels_bit_for_bit(extra, design):
+    """The terms the discovery effects add (a second hardening, natural curvature, hoop
+    bending, gravity) run in the compiled energy too, after the default terms and in the
+    assembly's order: the same energy, gradient and Hessian bit for bit."""
+    terms = ALL_TERMS + tuple(EXTRA_TERMS[name] for name in extra)
+    grid = make_grid(Patch(*design), DEFAULT_MATERIAL)
+    coef = fused.coefficients(terms, grid)
+    assert coef is not None
+    model = assembly.Model(grid, terms)
+    for seed in range(3):
+        r, z = _state(grid, seed)
+        E, g, hb = model.derivatives(r, z)
+        grad, band = np.zeros_like(g), np.zeros_like(hb)
+        assert fused.derivatives(r, z, coef, grad, band, True) == E
+        assert grad.tobytes() == g.tobytes() and band.tobytes() == hb.tobytes()
+        assert fused.energy(r, z, coef) == model.energy(r, z)
+    # and the added terms change the numbers: they are evaluated, not dropped
+    base = fused.coefficients(ALL_TERMS, grid)
+    assert fused.energy(r, z, base) != fused.energy(r, z, coef)
+
+
 def test_other_term_tuples_take_the_python_path():
     grid = make_grid(Patch(40.0, 0.8), DEFAULT_MATERIAL)
-    assert fused.coefficients(ALL_TERMS + (gravity.term(1e-3, 0.8, 2.0),), grid) is None
     assert fused.coefficients(ALL_TERMS[::-1], grid) is None
     assert fused.coefficients(ALL_TERMS[:-1], grid) is None
+    g, h = EXTRA_TERMS["gravity"], EXTRA_TERMS["hoop_bending"]
+    assert fused.coefficients(ALL_TERMS + (g, h), grid) is None          # not in EXTRAS order
+    assert fused.coefficients(ALL_TERMS + (g, g), grid) is None          # a kind twice
+    wrapped = dataclasses.replace(g, energy=lambda r, z, c: g.energy(r, z, c))
+    assert fused.coefficients(ALL_TERMS + (wrapped,), grid) is None      # another kernel
 
 
 @pytest.mark.parametrize("design", [(25.0, 1.0), (70.0, 0.6)])

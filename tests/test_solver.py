@@ -206,8 +206,31 @@ def test_solve_runs_on_one_blas_thread_and_restores_the_callers_setting(monkeypa
                         default=1))
         return real(*args)
 
+    import scipy.linalg  # noqa: F401  (its OpenBLAS loaded, as after any solve: the list is complete)
     before = [(p["filepath"], p["num_threads"]) for p in threadpool_info()]
     monkeypatch.setattr(newton_loop, "fused_iterate", spy)
     solve(Patch(40.0, 0.8))
     assert seen and set(seen) == {1}
     assert [(p["filepath"], p["num_threads"]) for p in threadpool_info()] == before
+
+
+def test_one_thread_nests_and_restores_the_setting_once_the_outer_block_ends():
+    """A loop holds the limit once around many solves: the solves' own blocks inside it keep it
+    and do not restore the caller's setting early."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    from stitchswitch.blas import one_thread
+
+    def blas_threads():
+        return max((p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"),
+                   default=1)
+
+    with threadpool_limits(limits=2, user_api="blas"):
+        outside = blas_threads()
+        with one_thread():
+            with one_thread():
+                assert blas_threads() == 1
+            assert blas_threads() == 1
+            solve(Patch(40.0, 0.8))
+            assert blas_threads() == 1
+        assert blas_threads() == outside

@@ -65,8 +65,8 @@ def _as_profile(name: str, values) -> np.ndarray:
     a = np.asarray(values, dtype=float)
     if a.ndim != 1:
         raise InvalidInputError(f"{name}: must be a 1D array, got shape {a.shape}")
-    bad = np.flatnonzero(~np.isfinite(a))
-    if bad.size:
+    if not np.isfinite(a).all():
+        bad = np.flatnonzero(~np.isfinite(a))
         raise InvalidInputError(f"{name}: non-finite value {float(a[bad[0]])!r} at index {bad[0]}")
     return a
 
@@ -85,20 +85,43 @@ def _validate(R_mm, r_mm, z_mm, n_inside):
     if not 0 < n < R.size - 1:
         raise InvalidInputError(f"n_inside: {n} must satisfy 0 < n_inside < N - 1 = {R.size - 1}")
     steps = np.diff(R)
-    if np.any(steps <= 0):
+    if not (steps > 0).all():
         i = int(np.argmax(steps <= 0))
         raise InvalidInputError(f"R_mm: must be strictly increasing, got {float(R[i])!r} "
                                 f"then {float(R[i + 1])!r} at index {i + 1}")
-    return R, r, z, n
+    return R, r, z, n, steps
 
 
-def _b_node(R, r, z, n_inside, h) -> tuple[int, str]:
+def _slopes(r, steps, lo: int, hi: int) -> np.ndarray:
+    """``np.gradient(r, R)[lo:hi + 1]`` (``steps`` = diff(R)) computed on the window alone, by
+    numpy's own formulas (second-order centred inside, one-sided at the ends, the uniform-step
+    form when every step is equal), so the numbers are numpy's bit for bit."""
+    n = r.size
+    out = np.empty(hi + 1 - lo)
+    uniform = bool((steps == steps[0]).all())
+    a, b = max(lo, 1), min(hi, n - 2)
+    if a <= b:
+        if uniform:
+            out[a - lo:b + 1 - lo] = (r[a + 1:b + 2] - r[a - 1:b]) / (2. * steps[0])
+        else:
+            dx1, dx2 = steps[a - 1:b], steps[a:b + 1]
+            out[a - lo:b + 1 - lo] = (-(dx2) / (dx1 * (dx1 + dx2)) * r[a - 1:b]
+                                      + (dx2 - dx1) / (dx1 * dx2) * r[a:b + 1]
+                                      + dx1 / (dx2 * (dx1 + dx2)) * r[a + 1:b + 2])
+    if lo == 0:
+        out[0] = (r[1] - r[0]) / steps[0]
+    if hi == n - 1:
+        out[-1] = (r[-1] - r[-2]) / steps[-1]
+    return out
+
+
+def _b_node(R, r, z, n_inside, h, steps) -> tuple[int, str]:
     if h < FLAT_H_MM:
         return n_inside, "flat"
     above = z[n_inside:] - z[-1]
     foot = n_inside + int(np.argmax(above <= FOOT_FRACTION * h))  # exists: above[-1] == 0
     lo, hi = n_inside, max(foot, n_inside + 1)
-    s = np.gradient(r, R)[lo:hi + 1]
+    s = _slopes(r, steps, lo, hi)
     if s.min() > 0:
         return lo + int(np.argmin(s)), "steepest"
     k0 = lo + int(np.argmax(s <= 0))
@@ -113,9 +136,9 @@ def keypoints_from_profile(R_mm, r_mm, z_mm, n_inside) -> Keypoints:
     """Keypoints of the profile (R_i, r_i, z_i), i = 0..N-1, with node ``n_inside`` on the
     embroidery boundary. Raises InvalidInputError on mismatched lengths, non-finite values,
     a non-increasing R or ``n_inside`` outside 1..N-2."""
-    R, r, z, n = _validate(R_mm, r_mm, z_mm, n_inside)
+    R, r, z, n, steps = _validate(R_mm, r_mm, z_mm, n_inside)
     h = float(z[0] - z[-1])
-    b, rule = _b_node(R, r, z, n, h)
+    b, rule = _b_node(R, r, z, n, h, steps)
     return Keypoints(h_mm=h, r_a_mm=float(r[n]), z_a_mm=float(z[n]),
                      r_b_mm=float(r[b]), z_b_mm=float(z[b]), b_index=int(b), b_rule=rule)
 

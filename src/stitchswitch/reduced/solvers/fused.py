@@ -1,15 +1,19 @@
-"""The default energy compiled as one function: the kernels of ``terms.ALL_TERMS`` called in a
-fixed order, so the Newton loop (``newton_loop``) evaluates the energy, gradient and banded
-Hessian without returning to Python.
+"""The energy compiled as one function: the kernels of ``terms.ALL_TERMS`` called in a fixed
+order, then those of the added terms of ``EXTRAS`` that are present, so the Newton loop
+(``newton_loop``) evaluates the energy, gradient and banded Hessian without returning to Python.
 
-``coefficients(terms, grid)`` decides whether a term tuple can take this path: its terms must
-have the default terms' kernels in the default order (their ``energy`` and ``accumulate`` are
-the very same functions, as for every ``dataclasses.replace`` variant such as
+``coefficients(terms, grid)`` decides whether a term tuple can take this path: its first terms
+must have the default terms' kernels in the default order (their ``energy`` and ``accumulate``
+are the very same functions, as for every ``dataclasses.replace`` variant such as
 ``terms.variants`` or a grid transform of the discovery effects); only the coefficients may
-differ. It returns the coefficients as a tuple per term, or None for any other tuple, which
-the solver evaluates through ``assembly.Model`` instead. Each kernel is called with the same
-arguments as ``Term.energy``/``Term.accumulate`` and the terms are summed in the same order, so
-both paths give the same numbers (tests/test_fused.py).
+differ. After them may come added terms (``EXTRAS``: a second hardening term, natural curvature,
+hoop bending, gravity: the energies the discovery effects add), each at most once and in that
+order.
+It returns the coefficients as a tuple per default term and one tuple for the added terms (an
+absent one has empty arrays), or None for any other tuple, which the solver evaluates through
+``assembly.Model`` instead (about three times slower per Newton iteration). Each kernel is
+called with the same arguments as ``Term.energy``/``Term.accumulate`` and the terms are summed
+in the same order, so both paths give the same numbers (tests/test_fused.py).
 
 numba's on-disk cache of these functions does not notice an edit of a kernel module they call;
 ``reduced.model.kernel_cache`` clears the cache whenever a kernel source changes (and
@@ -31,11 +35,22 @@ from stitchswitch.reduced.model.terms import (
     hardening,
     radial,
 )
+from stitchswitch.reduced.model.terms.extra import gravity, hoop_bending, natural_curvature
+from stitchswitch.reduced.model.terms.hinge import HESS_DOT, HESS_X
 from stitchswitch.reduced.model.terms.segment import BANDWIDTH, add_segment, segment, segment_lengths
 
 #: Array dimensions (-1: a scalar, "index": a 1-d integer array) of each default term's
 #: coefficients, in assembly order.
 LAYOUT = ((1, 1), (1, 1, 1, 1), (1, 1), (1, -1, -1), ("index", 1, 1, 1, -1), (1,))
+#: The added terms the compiled energy evaluates after the default ones, in this order: (name,
+#: energy, accumulate) of each kind. A term is of a kind when its ``energy`` and ``accumulate``
+#: are these very functions, whatever its coefficients (``hardening.with_weight`` is a second
+#: hardening term). ``EXTRA_LAYOUT``: the dimensions of their coefficients.
+EXTRAS = (("hardening", hardening.TERM.energy, hardening.TERM.accumulate),
+          ("natural_curvature", natural_curvature.energy, natural_curvature.accumulate),
+          ("hoop_bending", hoop_bending.energy, hoop_bending.accumulate),
+          ("gravity", gravity.energy, gravity.accumulate))
+EXTRA_LAYOUT = ((1, -1, -1), (1, 1), (1,), (1,))
 
 
 def _prepared(value, ndim):
@@ -49,24 +64,48 @@ def _prepared(value, ndim):
     return a if a.ndim == ndim else None
 
 
+def _extra_kind(term) -> int | None:
+    """The index in ``EXTRAS`` of the kind whose kernels ``term`` has, or None."""
+    for k, (_, energy_fn, accumulate_fn) in enumerate(EXTRAS):
+        if term.energy is energy_fn and term.accumulate is accumulate_fn:
+            return k
+    return None
+
+
+def _coefficients(term, grid, layout):
+    coef = tuple(term.coefficients(grid))
+    if len(coef) != len(layout):
+        return None
+    coef = tuple(_prepared(v, k) for v, k in zip(coef, layout))
+    return None if any(v is None for v in coef) else coef
+
+
 def coefficients(terms, grid):
-    """The per-term coefficient tuples of ``terms`` on ``grid`` if they have the default
-    kernels in the default order (see the module docstring), else None."""
+    """The per-term coefficient tuples of ``terms`` on ``grid``, then those of the added terms,
+    if ``terms`` are the default kernels in the default order followed by ``EXTRAS`` terms
+    (see the module docstring), else None."""
     terms = tuple(terms)
-    if len(terms) != len(ALL_TERMS) or any(
-            t.energy is not d.energy or t.accumulate is not d.accumulate
-            for t, d in zip(terms, ALL_TERMS)):
+    n = len(ALL_TERMS)
+    if len(terms) < n or any(t.energy is not d.energy or t.accumulate is not d.accumulate
+                             for t, d in zip(terms, ALL_TERMS)):
+        return None
+    kinds = [_extra_kind(t) for t in terms[n:]]
+    if None in kinds or kinds != sorted(set(kinds)):
         return None
     out = []
     for term, layout in zip(terms, LAYOUT):
-        coef = tuple(term.coefficients(grid))
-        if len(coef) != len(layout):
-            return None
-        coef = tuple(_prepared(v, k) for v, k in zip(coef, layout))
-        if any(v is None for v in coef):
+        coef = _coefficients(term, grid, layout)
+        if coef is None:
             return None
         out.append(coef)
-    return tuple(out)
+    # an absent term: empty arrays (and zero scalars), which the compiled energy skips
+    extras = [tuple(np.zeros(0) if k == 1 else 0.0 for k in layout) for layout in EXTRA_LAYOUT]
+    for term, k in zip(terms[n:], kinds):
+        coef = _coefficients(term, grid, EXTRA_LAYOUT[k])
+        if coef is None:
+            return None
+        extras[k] = coef
+    return tuple(out) + (tuple(extras),)
 
 
 @njit(cache=True)
@@ -153,6 +192,16 @@ def energy(r, z, c):
     total += boundary_ring._kernel(r, z, c[4][0], c[4][1], c[4][2], c[4][3], c[4][4], no_g, no_h,
                                    False, False)
     total += bending.energy_lengths(r, z, c[5][0], lengths)
+    x = c[6]
+    if x[0][0].size:
+        total += hardening._kernel(r, z, x[0][0], x[0][1], x[0][2], no_g, no_h, False, False)
+    if x[1][0].size:
+        total += natural_curvature._kernel(r, z, x[1][0], x[1][1], no_g, no_h, False, False,
+                                           HESS_X, HESS_DOT)
+    if x[2][0].size:
+        total += hoop_bending._kernel(r, z, x[2][0], no_g, no_h, False, False)
+    if x[3][0].size:
+        total += gravity._kernel(z, x[3][0], no_g, False)
     return total if math.isfinite(total) else math.inf
 
 
@@ -170,4 +219,14 @@ def derivatives(r, z, c, grad, hb, want_h):
     total += boundary_ring._kernel(r, z, c[4][0], c[4][1], c[4][2], c[4][3], c[4][4], grad, hb, True,
                                    want_h)
     total += bending.kernel_lengths(r, z, c[5][0], lengths, grad, hb, want_h)
+    x = c[6]
+    if x[0][0].size:
+        total += hardening._kernel(r, z, x[0][0], x[0][1], x[0][2], grad, hb, True, want_h)
+    if x[1][0].size:
+        total += natural_curvature._kernel(r, z, x[1][0], x[1][1], grad, hb, True, want_h,
+                                           HESS_X, HESS_DOT)
+    if x[2][0].size:
+        total += hoop_bending._kernel(r, z, x[2][0], grad, hb, True, want_h)
+    if x[3][0].size:
+        total += gravity._kernel(z, x[3][0], grad, True)
     return total

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from stitchswitch.blas import one_thread
 from stitchswitch.reduced.model.params import Patch
 
 __all__ = ["Evaluator", "solve_item", "MAX_NEWTON", "MAX_BRANCHES"]
@@ -94,7 +95,8 @@ class Evaluator:
         if self.executor is not None:
             out = self.executor.map(solve_item, items)
         else:
-            out = [solve_item(i) for i in items]
+            with one_thread():              # once for the batch, not once per solve
+                out = [solve_item(i) for i in items]
         self.calls += len(items)
         if self.progress:
             self.progress(self.calls)

@@ -23,7 +23,7 @@ import numpy as np
 from numba import njit
 
 from stitchswitch.reduced.model.terms.protocol import Term
-from stitchswitch.reduced.model.terms.segment import add_length_hessian, add_local
+from stitchswitch.reduced.model.terms.segment import NO_GRADIENT, NO_HESSIAN, add_length_hessian, add_local
 
 
 def segment_weights(grid) -> np.ndarray:
@@ -77,10 +77,20 @@ def _kernel(r, z, c, grad, hb, want_g, want_h):
     return E
 
 
+def energy(r, z, coef) -> float:
+    return _kernel(r, z, coef[0], NO_GRADIENT, NO_HESSIAN, False, False)
+
+
+def accumulate(r, z, coef, grad, hb) -> float:
+    """Add the gradient (and the Hessian if ``hb`` has columns) into grad / hb; return E."""
+    return _kernel(r, z, coef[0], grad, hb, True, hb.shape[1] > 0)
+
+
 def term(strength: float) -> Term:
-    """The hoop bending term with weight H = ``strength``."""
+    """The hoop bending term with weight H = ``strength``. Its ``energy`` and ``accumulate`` are
+    this module's functions for every strength (the solver's fused energy recognizes them)."""
     def coefficients(grid):
         return (strength * segment_weights(grid) / grid.n_nodes,)
 
-    return Term.from_kernel("hoop_bending", stencil=2, offset=0, coefficients=coefficients,
-                            kernel=_kernel)
+    return Term("hoop_bending", stencil=2, offset=0, coefficients=coefficients, energy=energy,
+                accumulate=accumulate)
