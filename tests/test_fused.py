@@ -42,6 +42,15 @@ def test_fused_derivatives_equal_the_python_assembly(terms, design):
         np.testing.assert_allclose(fused.energy(r, z, coef), model.energy(r, z), rtol=1e-14)
 
 
+def _assert_same_bits(model, coef, r, z):
+    """The fused energy, gradient and Hessian at (r, z) are ``model``'s bit for bit."""
+    E, g, hb = model.derivatives(r, z)
+    grad, band = np.zeros_like(g), np.zeros_like(hb)
+    assert fused.derivatives(r, z, coef, grad, band, True) == E
+    assert grad.tobytes() == g.tobytes() and band.tobytes() == hb.tobytes()
+    assert fused.energy(r, z, coef) == model.energy(r, z)
+
+
 def _other_rest_length(term, factor):
     """``term`` with its rest lengths scaled (its kernel kept: still the fused path)."""
     def coefficients(grid):
@@ -68,11 +77,7 @@ def test_fused_numbers_are_the_term_kernels_bit_for_bit(design, compression_lam)
         r, z = _state(grid, seed)
         k = grid.n_inside + 5                      # a level stretch, as held drops give
         z[k:], r[k:] = 0.0, grid.R[k:] * 1.01
-        E, g, hb = model.derivatives(r, z)
-        grad, band = np.zeros_like(g), np.zeros_like(hb)
-        assert fused.derivatives(r, z, coef, grad, band, True) == E
-        assert grad.tobytes() == g.tobytes() and band.tobytes() == hb.tobytes()
-        assert fused.energy(r, z, coef) == model.energy(r, z)
+        _assert_same_bits(model, coef, r, z)
 
 
 def test_fused_energy_is_infinite_outside_the_domain():
@@ -108,11 +113,7 @@ def test_fused_added_terms_are_the_term_kernels_bit_for_bit(extra, design):
     model = assembly.Model(grid, terms)
     for seed in range(3):
         r, z = _state(grid, seed)
-        E, g, hb = model.derivatives(r, z)
-        grad, band = np.zeros_like(g), np.zeros_like(hb)
-        assert fused.derivatives(r, z, coef, grad, band, True) == E
-        assert grad.tobytes() == g.tobytes() and band.tobytes() == hb.tobytes()
-        assert fused.energy(r, z, coef) == model.energy(r, z)
+        _assert_same_bits(model, coef, r, z)
     # and the added terms change the numbers: they are evaluated, not dropped
     base = fused.coefficients(ALL_TERMS, grid)
     assert fused.energy(r, z, base) != fused.energy(r, z, coef)

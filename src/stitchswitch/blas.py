@@ -29,12 +29,12 @@ def _controller():
 
 @contextmanager
 def one_thread():
-    if getattr(_held, "depth", 0):
+    if getattr(_held, "limited", False):
         yield
         return
     with _controller().limit(limits=1, user_api="blas"):
-        _held.depth = 1
+        _held.limited = True
         try:
             yield
         finally:
-            _held.depth = 0
+            _held.limited = False

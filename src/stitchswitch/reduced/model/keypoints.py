@@ -115,7 +115,7 @@ def _slopes(r, steps, lo: int, hi: int) -> np.ndarray:
     return out
 
 
-def _b_node(R, r, z, n_inside, h, steps) -> tuple[int, str]:
+def _b_node(r, z, n_inside, h, steps) -> tuple[int, str]:
     if h < FLAT_H_MM:
         return n_inside, "flat"
     above = z[n_inside:] - z[-1]
@@ -138,7 +138,7 @@ def keypoints_from_profile(R_mm, r_mm, z_mm, n_inside) -> Keypoints:
     a non-increasing R or ``n_inside`` outside 1..N-2."""
     R, r, z, n, steps = _validate(R_mm, r_mm, z_mm, n_inside)
     h = float(z[0] - z[-1])
-    b, rule = _b_node(R, r, z, n, h, steps)
+    b, rule = _b_node(r, z, n, h, steps)
     return Keypoints(h_mm=h, r_a_mm=float(r[n]), z_a_mm=float(z[n]),
                      r_b_mm=float(r[b]), z_b_mm=float(z[b]), b_index=int(b), b_rule=rule)
 

@@ -42,14 +42,15 @@ from stitchswitch.reduced.model.terms.segment import BANDWIDTH, add_segment, seg
 #: Array dimensions (-1: a scalar, "index": a 1-d integer array) of each default term's
 #: coefficients, in assembly order.
 LAYOUT = ((1, 1), (1, 1, 1, 1), (1, 1), (1, -1, -1), ("index", 1, 1, 1, -1), (1,))
-#: The added terms the compiled energy evaluates after the default ones, in this order: (name,
-#: energy, accumulate) of each kind. A term is of a kind when its ``energy`` and ``accumulate``
-#: are these very functions, whatever its coefficients (``hardening.with_weight`` is a second
-#: hardening term). ``EXTRA_LAYOUT``: the dimensions of their coefficients.
-EXTRAS = (("hardening", hardening.TERM.energy, hardening.TERM.accumulate),
-          ("natural_curvature", natural_curvature.energy, natural_curvature.accumulate),
-          ("hoop_bending", hoop_bending.energy, hoop_bending.accumulate),
-          ("gravity", gravity.energy, gravity.accumulate))
+#: The added terms the compiled energy evaluates after the default ones, in this order (a
+#: second hardening, natural curvature, hoop bending, gravity): (energy, accumulate) of each
+#: kind. A term is of a kind when its ``energy`` and ``accumulate`` are these very functions,
+#: whatever its coefficients (``hardening.with_weight`` is a second hardening term).
+#: ``EXTRA_LAYOUT``: the dimensions of their coefficients.
+EXTRAS = ((hardening.TERM.energy, hardening.TERM.accumulate),
+          (natural_curvature.energy, natural_curvature.accumulate),
+          (hoop_bending.energy, hoop_bending.accumulate),
+          (gravity.energy, gravity.accumulate))
 EXTRA_LAYOUT = ((1, -1, -1), (1, 1), (1,), (1,))
 
 
@@ -66,7 +67,7 @@ def _prepared(value, ndim):
 
 def _extra_kind(term) -> int | None:
     """The index in ``EXTRAS`` of the kind whose kernels ``term`` has, or None."""
-    for k, (_, energy_fn, accumulate_fn) in enumerate(EXTRAS):
+    for k, (energy_fn, accumulate_fn) in enumerate(EXTRAS):
         if term.energy is energy_fn and term.accumulate is accumulate_fn:
             return k
     return None
@@ -177,6 +178,23 @@ def _membrane(r, z, cr, cc, lengths, grad, hb, want_g, want_h):
 
 
 @njit(cache=True)
+def _added(total, r, z, x, grad, hb, want_g, want_h):
+    """``total`` plus the energies of the added terms present in ``x`` (``coefficients``' last
+    tuple, ``EXTRAS`` order), each added in turn as the assembly adds them; their gradient
+    (``want_g``) and Hessian (``want_h``) go into ``grad`` and ``hb``."""
+    if x[0][0].size:
+        total += hardening._kernel(r, z, x[0][0], x[0][1], x[0][2], grad, hb, want_g, want_h)
+    if x[1][0].size:
+        total += natural_curvature._kernel(r, z, x[1][0], x[1][1], grad, hb, want_g, want_h,
+                                           HESS_X, HESS_DOT)
+    if x[2][0].size:
+        total += hoop_bending._kernel(r, z, x[2][0], grad, hb, want_g, want_h)
+    if x[3][0].size:
+        total += gravity._kernel(z, x[3][0], grad, want_g)
+    return total
+
+
+@njit(cache=True)
 def energy(r, z, c):
     """Total energy (``assembly.Model.energy``); +inf outside the domain."""
     if not in_domain(r, z):
@@ -192,16 +210,7 @@ def energy(r, z, c):
     total += boundary_ring._kernel(r, z, c[4][0], c[4][1], c[4][2], c[4][3], c[4][4], no_g, no_h,
                                    False, False)
     total += bending.energy_lengths(r, z, c[5][0], lengths)
-    x = c[6]
-    if x[0][0].size:
-        total += hardening._kernel(r, z, x[0][0], x[0][1], x[0][2], no_g, no_h, False, False)
-    if x[1][0].size:
-        total += natural_curvature._kernel(r, z, x[1][0], x[1][1], no_g, no_h, False, False,
-                                           HESS_X, HESS_DOT)
-    if x[2][0].size:
-        total += hoop_bending._kernel(r, z, x[2][0], no_g, no_h, False, False)
-    if x[3][0].size:
-        total += gravity._kernel(z, x[3][0], no_g, False)
+    total = _added(total, r, z, c[6], no_g, no_h, False, False)
     return total if math.isfinite(total) else math.inf
 
 
@@ -219,14 +228,4 @@ def derivatives(r, z, c, grad, hb, want_h):
     total += boundary_ring._kernel(r, z, c[4][0], c[4][1], c[4][2], c[4][3], c[4][4], grad, hb, True,
                                    want_h)
     total += bending.kernel_lengths(r, z, c[5][0], lengths, grad, hb, want_h)
-    x = c[6]
-    if x[0][0].size:
-        total += hardening._kernel(r, z, x[0][0], x[0][1], x[0][2], grad, hb, True, want_h)
-    if x[1][0].size:
-        total += natural_curvature._kernel(r, z, x[1][0], x[1][1], grad, hb, True, want_h,
-                                           HESS_X, HESS_DOT)
-    if x[2][0].size:
-        total += hoop_bending._kernel(r, z, x[2][0], grad, hb, True, want_h)
-    if x[3][0].size:
-        total += gravity._kernel(z, x[3][0], grad, True)
-    return total
+    return _added(total, r, z, c[6], grad, hb, True, want_h)
