@@ -187,6 +187,29 @@ def test_cross_validation_counts_the_folds_whose_refit_kept_the_full_fit():
     assert all(not np.array_equal(x, spec.encode(START)) for x in away.fold_parameters)
 
 
+def test_a_fold_refit_stays_within_its_radius_of_the_full_fit():
+    """``radius``: started away from the optimum, the fold refits move further than 0.05 (log10)
+    without it and stay within 0.05 of the start in every coordinate with it; the full bounds
+    are unchanged for the fit itself."""
+    from stitchswitch.validation.discovery.cv import cross_validate
+
+    spec = ModelSpec(START, None, ("w_b_emb", "k_r_emb"))
+    designs = [(30.0, 0.8), (50.0, 1.0), (70.0, 0.7), (40.0, 0.9), (60.0, 0.6), (80.0, 1.0)]
+    ev = Evaluator()
+    truth = START.replace(w_b_emb=1.4 * START.w_b_emb, k_r_emb=1.6 * START.k_r_emb)
+    measured = ev.one(spec, spec.encode(truth), designs)
+    labels = fold_labels(designs, 3, 0)
+    x0 = spec.encode(START)
+    free = cross_validate(spec, ev, designs, measured, x0, labels, max_nfev=3)
+    assert max(np.abs(x - x0).max() for x in free.fold_parameters) > 0.06
+    boxed = cross_validate(spec, ev, designs, measured, x0, labels, max_nfev=3, radius=0.05)
+    assert all(np.abs(x - x0).max() <= 0.05 + 1e-12 for x in boxed.fold_parameters)
+    assert boxed.stuck_folds == 0 and boxed.score_mm2 < cross_validate(
+        spec, ev, designs, measured, x0, labels, max_nfev=1).score_mm2
+    with pytest.raises(InvalidInputError, match="cv_radius"):
+        DiscoveryConfig(cv_radius=0.0)
+
+
 def test_a_profile_fit_holds_the_strength_and_finds_the_coefficients_there():
     """``fit(..., free=k)``: the coefficients move, the effect's strength does not; at the true
     strength the refitted coefficients reproduce noise-free data, which the starting model's

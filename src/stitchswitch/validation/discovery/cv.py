@@ -8,8 +8,13 @@
   only (binomial sizes).
 * ``cross_validate``: for each fold, refit every parameter on the other folds by least squares
   started at the full-data fit (its finite-difference Jacobian is cached, so the first step is
-  free) with at most ``max_nfev`` steps, and predict the held-out designs with cold solves. The
-  score is the mean squared error (mm^2) of those held-out predictions over the five keypoints.
+  free) with at most ``max_nfev`` steps and, with ``radius``, within ``radius`` of it in every
+  coordinate (``fit.fit``), and predict the held-out designs (their branch chosen as the
+  evaluator does). The score is the mean squared error (mm^2) of those held-out predictions
+  over the five keypoints. A fold refit estimates how the fit moves without a fifth of the
+  rows: a step far outside the full fit's neighbourhood leaves its basin, and on bistable data
+  another basin fits the fold's rows by other branches and predicts the held-out ones badly
+  (measured: ``docs/discovery.md``, "The fold refit's radius").
   A fold whose refit ends where it started (its steps were all rejected within the budget) is
   counted as stuck: its held-out rows are predicted by the full fit, which saw them, so with
   stuck folds the score is partly a training error.
@@ -74,7 +79,8 @@ class CrossValidation:
         return len(self.fold_parameters)
 
 
-def cross_validate(spec, ev, designs, measured, x_full, labels, *, max_nfev: int = 3) -> CrossValidation:
+def cross_validate(spec, ev, designs, measured, x_full, labels, *, max_nfev: int = 3,
+                   radius: float | None = None) -> CrossValidation:
     designs = [tuple(map(float, d)) for d in designs]
     measured = np.asarray(measured, dtype=float)
     pred = np.empty_like(measured)
@@ -84,7 +90,7 @@ def cross_validate(spec, ev, designs, measured, x_full, labels, *, max_nfev: int
         if not test.any():
             continue
         train_d = [d for d, t in zip(designs, test) if not t]
-        f = fit(spec, ev, train_d, measured[~test], x_full, max_nfev=max_nfev)
+        f = fit(spec, ev, train_d, measured[~test], x_full, max_nfev=max_nfev, radius=radius)
         xs.append(f.x)
         pred[test] = ev.one(spec, f.x, [d for d, t in zip(designs, test) if t])
     loss = np.mean((pred - measured) ** 2, axis=1)

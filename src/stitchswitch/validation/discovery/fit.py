@@ -101,15 +101,20 @@ def jacobian(spec, ev, designs, x, lo, hi, columns: int | None = None):
     return np.stack([(preds[k] - centre).ravel() / h for k, h in enumerate(signed)], axis=1)
 
 
-def fit(spec, ev, designs, measured, x0, *, max_nfev: int = 20, free: int | None = None) -> Fit:
+def fit(spec, ev, designs, measured, x0, *, max_nfev: int = 20, free: int | None = None,
+        radius: float | None = None) -> Fit:
     """Least squares from ``x0`` (clipped into the bounds) with at most ``max_nfev`` steps; with
     ``free``, only the first ``free`` coordinates move (the rest, the candidate's strength in
-    a profile, stay at ``x0``'s)."""
+    a profile, stay at ``x0``'s); with ``radius``, every coordinate stays within ``radius``
+    (search units: log10 of a coefficient, probes of an effect) of ``x0``'s."""
     from scipy.optimize import least_squares
 
     measured = np.asarray(measured, dtype=float)
     lo, hi = spec.bounds()
     x0 = np.clip(np.asarray(x0, dtype=float), lo, hi)
+    box_lo, box_hi = lo, hi
+    if radius is not None:
+        box_lo, box_hi = np.maximum(lo, x0 - radius), np.minimum(hi, x0 + radius)
     k = len(x0) if free is None else int(free)
     whole = lambda y: np.concatenate([y, x0[k:]])                      # noqa: E731
     calls = [0]
@@ -126,7 +131,7 @@ def fit(spec, ev, designs, measured, x0, *, max_nfev: int = 20, free: int | None
             return np.zeros((measured.size, k))
         return jacobian(spec, ev, designs, whole(y), lo, hi, columns=k)
 
-    res = least_squares(fun, x0[:k], jac=jac, bounds=(lo[:k], hi[:k]), method="trf",
+    res = least_squares(fun, x0[:k], jac=jac, bounds=(box_lo[:k], box_hi[:k]), method="trf",
                         max_nfev=max_nfev, x_scale=1.0, xtol=1e-5, ftol=1e-6, gtol=1e-8)
     x = whole(np.asarray(res.x, dtype=float))
     # the best point evaluated is the result (trf may end on a rejected trial)

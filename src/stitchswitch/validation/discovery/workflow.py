@@ -94,7 +94,9 @@ class DiscoveryConfig:
     ``folds``: K of the cross-validation. ``alpha``: family-wise significance level.
     ``de_generations``: differential-evolution generations before the starting model's least
     squares (0: least squares from the starting material only), population ``de_popsize``.
-    ``fit_max_nfev`` / ``cv_max_nfev``: least-squares steps of a full fit / of a fold refit.
+    ``fit_max_nfev`` / ``cv_max_nfev``: least-squares steps of a full fit / of a fold refit;
+    ``cv_radius``: how far (search units) a fold refit may move from the full fit in any
+    coordinate (``cv.cross_validate``; None: anywhere in the bounds).
     ``scan_points``: magnitudes of the strength scan. ``permutations``: of the residual test.
     ``screen_nodes``: the resolution (nodes) at which every candidate is screened (fitted with
     at most ``screen_max_nfev`` steps and cross-validated with one-step fold refits) before the
@@ -124,6 +126,7 @@ class DiscoveryConfig:
     de_popsize: int = 6
     fit_max_nfev: int = 25
     cv_max_nfev: int = 2
+    cv_radius: float | None = 1.0
     scan_points: int = 5
     permutations: int = 2000
     screen_nodes: int | None = 150
@@ -155,6 +158,8 @@ class DiscoveryConfig:
                      "refine", "polish_max_nfev", "propose", "screen_max_nfev"):
             if int(getattr(self, name)) < (2 if name == "folds" else 0 if name == "propose" else 1):
                 raise InvalidInputError(f"{name}: {getattr(self, name)!r} is too small")
+        if self.cv_radius is not None and not self.cv_radius > 0:
+            raise InvalidInputError(f"cv_radius: {self.cv_radius!r} must be > 0 (or None)")
         if self.screen_nodes is not None and int(self.screen_nodes) < 20:
             raise InvalidInputError(f"screen_nodes: {self.screen_nodes!r} is below 20")
         if self.huber_c is not None and not self.huber_c > 0:
@@ -411,8 +416,10 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config, held_out=None
     F, p = f_test(rss(fit_a), rss(ff), m_fit.size, base_f.size, spec_f.size)
     if p >= threshold:
         return {**out, "f_statistic": F, "p_value": p, **rejected}
-    cv_a = cross_validate(base_f, ev, d_tr, m_fit, fit_a.x, labels, max_nfev=config.cv_max_nfev)
-    cv_f = cross_validate(spec_f, ev, d_tr, m_fit, ff.x, labels, max_nfev=config.cv_max_nfev)
+    cv_a = cross_validate(base_f, ev, d_tr, m_fit, fit_a.x, labels, max_nfev=config.cv_max_nfev,
+                         radius=config.cv_radius)
+    cv_f = cross_validate(spec_f, ev, d_tr, m_fit, ff.x, labels, max_nfev=config.cv_max_nfev,
+                         radius=config.cv_radius)
     scores = None
     if held_out is not None and len(held_out[0]):
         d_va, m_va, sigma = held_out
@@ -540,7 +547,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                                          screen_spec=screen if screen != base else None,
                                          polish_max_nfev=config.polish_max_nfev)
     rss0 = float(np.sum((base_fit.predictions - m_fit) ** 2))
-    cv0 = cross_validate(base, ev, d_tr, m_fit, base_fit.x, labels, max_nfev=config.cv_max_nfev)
+    cv0 = cross_validate(base, ev, d_tr, m_fit, base_fit.x, labels, max_nfev=config.cv_max_nfev,
+                         radius=config.cv_radius)
     before = np.empty_like(measured)
     before[tr] = base_fit.predictions
     before[va] = ev.one(base, base_fit.x, d_va)
@@ -554,7 +562,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
         # a leader at zero strength is the starting model itself: it cannot pass, and its
         # held-out error is the starting model's (no fold refits run for it)
         cvr = cv0 if _zero(f.spec, f.x) else cross_validate(
-            f.spec, ev, d_tr, m_fit, f.x, labels, max_nfev=config.cv_max_nfev)
+            f.spec, ev, d_tr, m_fit, f.x, labels, max_nfev=config.cv_max_nfev,
+            radius=config.cv_radius)
         c = screened[name]
         final[name] = _candidate(name, f.spec, f, m_fit, cvr, cv0, c.signature,
                                  c.fit_start, rss0, base.size, m, config, ev, d_va, m_va,
