@@ -189,8 +189,8 @@ def test_cross_validation_counts_the_folds_whose_refit_kept_the_full_fit():
 
 def test_a_fold_refit_stays_within_its_radius_of_the_full_fit():
     """``radius``: started away from the optimum, the fold refits move further than 0.05 (log10)
-    without it and stay within 0.05 of the start in every coordinate with it; the full bounds
-    are unchanged for the fit itself."""
+    without it and stay within 0.05 of the start in every coordinate with it, and still improve
+    on the start; a radius must be positive."""
     from stitchswitch.validation.discovery.cv import cross_validate
 
     spec = ModelSpec(START, None, ("w_b_emb", "k_r_emb"))

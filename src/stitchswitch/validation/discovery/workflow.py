@@ -300,6 +300,13 @@ def _effect_values(spec, x, name: str) -> dict:
         name, (0.0,) * len(spec.effect_parameters))))
 
 
+def _fold_refits(spec, ev, designs, measured, x, labels, config):
+    """The full-resolution cross-validation of ``spec`` fitted at ``x``: fold refits with the
+    config's budget (``cv_max_nfev``) and radius (``cv_radius``)."""
+    return cross_validate(spec, ev, designs, measured, x, labels, max_nfev=config.cv_max_nfev,
+                          radius=config.cv_radius)
+
+
 def _candidate(name, spec, f, m_tr, cv, cv0, why, how, rss0, k0, m, config, ev, d_va, m_va,
                before_va, refined):
     """The ``Candidate`` of fit ``f`` (with its cross-validation ``cv``) against the starting
@@ -416,10 +423,8 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config, held_out=None
     F, p = f_test(rss(fit_a), rss(ff), m_fit.size, base_f.size, spec_f.size)
     if p >= threshold:
         return {**out, "f_statistic": F, "p_value": p, **rejected}
-    cv_a = cross_validate(base_f, ev, d_tr, m_fit, fit_a.x, labels, max_nfev=config.cv_max_nfev,
-                         radius=config.cv_radius)
-    cv_f = cross_validate(spec_f, ev, d_tr, m_fit, ff.x, labels, max_nfev=config.cv_max_nfev,
-                         radius=config.cv_radius)
+    cv_a = _fold_refits(base_f, ev, d_tr, m_fit, fit_a.x, labels, config)
+    cv_f = _fold_refits(spec_f, ev, d_tr, m_fit, ff.x, labels, config)
     scores = None
     if held_out is not None and len(held_out[0]):
         d_va, m_va, sigma = held_out
@@ -547,8 +552,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                                          screen_spec=screen if screen != base else None,
                                          polish_max_nfev=config.polish_max_nfev)
     rss0 = float(np.sum((base_fit.predictions - m_fit) ** 2))
-    cv0 = cross_validate(base, ev, d_tr, m_fit, base_fit.x, labels, max_nfev=config.cv_max_nfev,
-                         radius=config.cv_radius)
+    cv0 = _fold_refits(base, ev, d_tr, m_fit, base_fit.x, labels, config)
     before = np.empty_like(measured)
     before[tr] = base_fit.predictions
     before[va] = ev.one(base, base_fit.x, d_va)
@@ -561,9 +565,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                           "no improvement over the starting model")
         # a leader at zero strength is the starting model itself: it cannot pass, and its
         # held-out error is the starting model's (no fold refits run for it)
-        cvr = cv0 if _zero(f.spec, f.x) else cross_validate(
-            f.spec, ev, d_tr, m_fit, f.x, labels, max_nfev=config.cv_max_nfev,
-            radius=config.cv_radius)
+        cvr = cv0 if _zero(f.spec, f.x) else _fold_refits(f.spec, ev, d_tr, m_fit, f.x,
+                                                          labels, config)
         c = screened[name]
         final[name] = _candidate(name, f.spec, f, m_fit, cvr, cv0, c.signature,
                                  c.fit_start, rss0, base.size, m, config, ev, d_va, m_va,
