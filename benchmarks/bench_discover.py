@@ -31,7 +31,14 @@ recalibration absorbs; with the case's noise that is the noncentrality of the F 
 (the true effect, fitted exactly) would run, and its power at the workflow's threshold
 (``detectability``). The identification on the cases with power >= 0.5 is printed too: a case
 below it cannot be identified by any test on its data, and the mean power over the library
-cases is the identification an oracle would expect: the part of the target the data allow. A
+cases is the identification an oracle would expect: the part of the target the data allow. The
+same oracle test is also run on each case's own noise draw (``oracle_fit``'s ``passes``: the
+true effect fitted from the truth against the workflow's starting model), and the
+identification printed on the cases where it passes: a case where it fails could not be named
+by any test on the data the benchmark drew. That fit is then put through the workflow's own
+rival rule as the leader (``workflow.rivals`` against the workflow's other candidates): the
+oracle's score by the benchmark's rule on these draws, the ceiling the workflow is compared
+with. A
 *false discovery* is a
 named effect whose addition does not shrink the validation gap to the noise-free truth (MAE
 over the five keypoints) by at least 25 % (target 0 on null, foreign and fem data). The *gap
@@ -49,10 +56,13 @@ noise draw for both arms): the proposed next designs and as many random designs 
 group's candidates: how often each *resolves* the group, i.e. names the true effect. Only
 cases whose truth is a library effect inside the group are scored (only they have a right name
 to resolve to); for the others (the truth outside the group, foreign, null or shell data) the
-names each arm gave are listed beside the score.
+names each arm gave are listed beside the score. The trials are paired (a trial's two arms
+share its case and noise seed), and the exact sign test on the trials only one arm resolved
+(McNemar's) says whether the proposed designs' lead is more than chance.
 
     python benchmarks/bench_discover.py [--groups lib,null,foreign,small,two,fem]
-        [--only ID,...] [--log cases.jsonl] [--no-proposal] [--trials 3] [--json]
+        [--only ID,...] [--log cases.jsonl] [--no-proposal] [--trials 3] [--proof-rows K]
+        [--json]
 
 ``--log`` appends one JSON line per finished case and skips cases already in it (resume).
 """
@@ -64,6 +74,7 @@ import json
 import pathlib
 import sys
 import time
+import types
 
 import numpy as np
 
@@ -249,14 +260,15 @@ def _gap(pred, clean, va):
     return np.mean(np.abs(pred[va] - clean[va]), axis=0)
 
 
-def _discover(designs, split, kp, title, effects=None, relative=False):
+def _discover(designs, split, kp, title, effects=None, relative=False, propose=None):
     from stitchswitch.validation.discovery.synthetic import START_MATERIAL
     from stitchswitch.validation.discovery.workflow import DiscoveryConfig, discover
     from stitchswitch.validation.measured import parse_measurements
 
     data = parse_measurements(_csv(designs, split, kp, title), title)
     config = DiscoveryConfig(effects=tuple(effects) if effects else None,
-                             relative_noise=relative)
+                             relative_noise=relative,
+                             **({} if propose is None else {"propose": propose}))
     c0, t0 = time.process_time(), time.perf_counter()
     disc = discover(data, START_MATERIAL, config)
     return disc, time.process_time() - c0, time.perf_counter() - t0
@@ -293,17 +305,30 @@ def detectability(case, designs, split, clean) -> dict:
             "bistable": flip}
 
 
-def oracle_fit(case, designs, split, kp, clean) -> dict:
+def oracle_fit(case, designs, split, kp, clean, disc) -> dict:
     """The gap a perfect identification leaves: the TRUE model (the case's library effect, the
     five coefficients free) fitted to the case's noisy training rows as the workflow fits a
     candidate at full resolution, started at the true parameters. Its validation gap to the
     noise-free truth (MAE per keypoint) is what the noise lets any fit of the right effect
-    reach; the workflow's gap reduction on an identified case is to be read against it."""
+    reach; the workflow's gap reduction on an identified case is to be read against it.
+
+    ``passes``: the workflow's F test of that fit against the workflow's own starting model
+    (the training MSE of its equal-footing fit, from ``disc``, the workflow's result) at the
+    workflow's threshold: whether this case's own noise draw lets the true effect, fitted from
+    the truth, be significant at all. ``power`` (``detectability``) is the same test's
+    probability over noise draws; ``passes`` is its outcome on the draw the benchmark made.
+    ``rivals``: the workflow's other candidates that would be reported with that fit as
+    indistinguishable by the workflow's own rule (``workflow.rivals``: they explain the
+    residual, and their held-out row losses are within the noise of the oracle's, whose fold
+    refits are run as the workflow runs them); ``score``: what the
+    oracle would score by the benchmark's rule (1 named, 1/2 with rivals, 0 not significant),
+    the ceiling of this case on this draw."""
+    from stitchswitch.validation.discovery.cv import cross_validate, f_test, fold_labels
     from stitchswitch.validation.discovery.evaluate import Evaluator
     from stitchswitch.validation.discovery.fit import fit
     from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
     from stitchswitch.validation.discovery.synthetic import START_MATERIAL, TRUE_MATERIAL
-    from stitchswitch.validation.discovery.workflow import DiscoveryConfig
+    from stitchswitch.validation.discovery.workflow import DiscoveryConfig, rivals
 
     tr = np.array(split) == "train"
     d_tr = [d for d, t in zip(designs, tr) if t]
@@ -315,14 +340,36 @@ def oracle_fit(case, designs, split, kp, clean) -> dict:
     pred = np.empty_like(clean)
     pred[tr], pred[~tr] = f.predictions, ev.one(spec, f.x, d_va)
     gap = _gap(pred, clean, ~tr)
+    n = kp[tr].size
+    s0 = disc.summary["starting_model"]
+    base_mse_mm2 = s0["train_mse_mm2"]
+    _, p = f_test(n * base_mse_mm2, n * f.mse_mm2, n, len(BASE_FREE), spec.size)
+    config = DiscoveryConfig()
+    passes = bool(f.mse_mm2 < base_mse_mm2 and p < config.alpha / len(config.effects))
+    # the workflow's own rival rule with the oracle's fit as the leader: its held-out losses
+    # (fold refits as the workflow's, then the validation rows) against the other candidates'
+    labels = fold_labels(d_tr, config.folds, config.seed)
+    cvr = cross_validate(spec, ev, d_tr, kp[tr], f.x, labels, max_nfev=config.cv_max_nfev,
+                         radius=config.cv_radius)
+    leader = types.SimpleNamespace(held_out_loss=np.concatenate(
+        [cvr.row_loss, np.mean((pred[~tr] - kp[~tr]) ** 2, axis=1)]))
+    others = [c for c in disc.ranking if c.effect != case["source"]]
+    close = ([c.effect for c in rivals(leader, others, s0["cv_score_mm2"], config.alpha,
+                                       config.seed)] if passes else [])
     return {"gap": dict(zip(QUANT, map(float, gap))),
             "fitted": list(map(float, spec.decode(f.x)[1].get(case["source"], ()))),
-            "train_mse_mm2": float(f.mse_mm2)}
+            "train_mse_mm2": float(f.mse_mm2), "base_train_mse_mm2": float(base_mse_mm2),
+            "p_value": float(p), "passes": passes, "rivals": close,
+            "score": 0.0 if not passes else 0.5 if close else 1.0}
 
 
-def run_case(case: dict, proposal: bool = True, trials: int = 3) -> dict:
+def run_case(case: dict, proposal: bool = True, trials: int = 3, rows: int | None = None) -> dict:
+    """One case: the workflow's verdict, gaps, detectability and oracle; with ``proposal``, the
+    proof's ``trials`` when the verdict is "indistinguishable", each adding ``rows`` proposed
+    (and as many random) designs (None: the workflow's default number of proposed samples)."""
     designs, split, kp, clean = dataset(case)
-    disc, cpu, wall = _discover(designs, split, kp, case["id"], relative=case["relative"])
+    disc, cpu, wall = _discover(designs, split, kp, case["id"], relative=case["relative"],
+                                propose=rows)
     s = disc.summary
     va = disc.split == "val"
     gap_b, gap_a = _gap(disc.before, clean, va), _gap(disc.after, clean, va)
@@ -348,7 +395,7 @@ def run_case(case: dict, proposal: bool = True, trials: int = 3) -> dict:
     if case["group"] in ("lib", "small", "two", "pairs"):
         out["detectability"] = detectability(case, designs, split, clean)
     if case["group"] in ("lib", "small"):
-        out["oracle"] = oracle_fit(case, designs, split, kp, clean)
+        out["oracle"] = oracle_fit(case, designs, split, kp, clean, disc)
     if proposal and s["verdict"] == "indistinguishable" and case["group"] != "hetero":
         out["proposal_trials"] = [_proposal_trial(case, designs, split, kp, s, t)
                                   for t in range(trials)]
@@ -379,12 +426,26 @@ def _proposal_trial(case, designs, split, kp, s, trial: int) -> dict:
         clean = _truth(case["source"], case["values"], extra)
         new = _noisy(case, clean, np.random.default_rng([case["seed"], 8, trial]))
         disc, cpu, _ = _discover(designs + extra, split + ["train"] * len(extra),
-                                 np.vstack([kp, new]), f"{case['id']}+{label}{trial}", group)
+                                 np.vstack([kp, new]), f"{case['id']}+{label}{trial}", group,
+                                 propose=0)
         out[label] = {"designs": extra, "verdict": disc.summary["verdict"],
                       "named": disc.summary["missing_effect"],
                       "group": disc.summary["indistinguishable"],
                       "resolved": _resolved(case, group, disc), "cpu_seconds": cpu}
     return out
+
+
+def _paired_sign_test(trials) -> dict:
+    """The proof's trials paired (both arms share a trial's case and noise seed): how many
+    only the proposed designs resolved, how many only the random ones, and the exact one-sided
+    sign test (McNemar's) that the proposed resolve more often (p of at least that many
+    proposed-only wins among the discordant trials, were both arms equally good)."""
+    from scipy.stats import binomtest
+
+    b = sum(r["source"] == t["proposed"]["named"] != t["random"]["named"] for r, t in trials)
+    c = sum(r["source"] == t["random"]["named"] != t["proposed"]["named"] for r, t in trials)
+    p = binomtest(b, b + c, 0.5, alternative="greater").pvalue if b + c else 1.0
+    return {"proposed_only": b, "random_only": c, "p_value": float(p)}
 
 
 def _proof_trials(results):
@@ -450,6 +511,7 @@ def summarize(results: list) -> dict:
     trials, outside = _proof_trials(results)
     resolved = {k: sum(r["source"] == t[k]["named"] for r, t in trials)
                 for k in ("proposed", "random")}
+    paired = _paired_sign_test(trials)
     score = sum(_score(r) for r in lib)
     detectable = [r for r in lib if r.get("detectability", {}).get("power", 0.0) >= 0.5]
     score_det = sum(_score(r) for r in detectable)
@@ -457,6 +519,10 @@ def summarize(results: list) -> dict:
     # probability ``power``: its expected identification is the ceiling the data allow
     powers = [r["detectability"]["power"] for r in lib if "detectability" in r]
     ceiling = float(np.mean(powers)) if powers else float("nan")
+    # the same oracle's test on each case's own noise draw: the cases any test could name
+    drawn = [r for r in lib if r.get("oracle", {}).get("passes")]
+    score_drawn = sum(_score(r) for r in drawn)
+    oracle_scores = [r["oracle"]["score"] for r in lib if "score" in r.get("oracle", {})]
     fd = [r["id"] for r in clean_groups if _false_discovery(r)]
     pairs = [r for r in results if r["group"] == "pairs"]
     het = {r["id"]: r for r in results if r["group"] == "hetero"}
@@ -478,6 +544,12 @@ def summarize(results: list) -> dict:
         "detectable_cases": len(detectable), "detectable_score": score_det,
         "detectable_accuracy": score_det / len(detectable) if detectable else float("nan"),
         "oracle_expected_accuracy": ceiling,
+        "oracle_passes_on_draw": len(drawn), "oracle_passes_score": score_drawn,
+        "oracle_score_on_draw": float(sum(oracle_scores)) if oracle_scores else float("nan"),
+        "oracle_rivals": {r["id"]: r["oracle"]["rivals"] for r in lib
+                          if r.get("oracle", {}).get("rivals")},
+        "oracle_fails_on_draw": {r["id"]: r["oracle"]["p_value"] for r in lib
+                                 if r.get("oracle", {}).get("passes") is False},
         "undetectable": {r["id"]: r["detectability"]["power"] for r in lib
                          if r not in detectable and "detectability" in r},
         "false_discoveries": fd, "false_discovery_cases": len(clean_groups),
@@ -492,7 +564,7 @@ def summarize(results: list) -> dict:
         "relative_noise": relative,
         "two_effects": {r["id"]: [r["named"], r.get("second", []), r["unexplained"]]
                         for r in results if r["group"] == "two"},
-        "proposal_trials": len(trials), "resolved": resolved,
+        "proposal_trials": len(trials), "resolved": resolved, "resolved_paired": paired,
         "proposal_trials_outside_proof": outside,
         "cpu_seconds_median": float(np.median(cpu)) if cpu else float("nan"),
         "cpu_seconds_max": float(np.max(cpu)) if cpu else float("nan"),
@@ -537,6 +609,18 @@ def table(results: list, summary: dict) -> str:
               f"  ceiling set by the data: an oracle F test (the true effect fitted exactly) "
               f"would identify {100 * s['oracle_expected_accuracy']:.0f} % of these cases on "
               "average (mean power); the rest of the 90 % target is out of reach of any test",
+              f"  on the benchmark's own noise draws the oracle's F test (the true effect fitted "
+              f"from the truth, against the workflow's starting model) passes on "
+              f"{s['oracle_passes_on_draw']}/{s['library_cases']} cases = "
+              f"{100 * s['oracle_passes_on_draw'] / max(s['library_cases'], 1):.0f} %; the "
+              f"workflow scores {s['oracle_passes_score']:g}/{s['oracle_passes_on_draw']} on "
+              "those; the oracle fails on: "
+              + ", ".join(f"{k} (p {v:.2g})" for k, v in s["oracle_fails_on_draw"].items()),
+              f"  scored by the benchmark's rule on these draws (the oracle's fit as the leader "
+              f"of the workflow's rival rule: 1 named, 1/2 indistinguishable) the oracle would "
+              f"score {s['oracle_score_on_draw']:g}/{s['library_cases']} = "
+              f"{100 * s['oracle_score_on_draw'] / max(s['library_cases'], 1):.0f} %, against "
+              f"the workflow's {s['score']:g}; its rivals: {s['oracle_rivals']}",
               f"false discoveries (null, foreign, fem; named and gap shrunk < 25 %): "
               f"{len(s['false_discoveries'])}/{s['false_discovery_cases']} {s['false_discoveries']} "
               f"(target 0); named there: {s['named_on_clean_groups']}",
@@ -568,6 +652,10 @@ def table(results: list, summary: dict) -> str:
               f"whose group holds the true library effect; resolved (the true effect named) with "
               f"the proposed designs {s['resolved']['proposed']}, with as many random designs "
               f"{s['resolved']['random']}",
+              f"  paired by trial: resolved by the proposed designs only "
+              f"{s['resolved_paired']['proposed_only']}, by the random ones only "
+              f"{s['resolved_paired']['random_only']}; exact sign test that the proposed "
+              f"resolve more often: p = {s['resolved_paired']['p_value']:.2g}",
               *(f"  outside the proof (no right name to resolve to), {cid}: proposed named "
                 f"{o['proposed_named']}, random named {o['random_named']}"
                 for cid, o in s["proposal_trials_outside_proof"].items()),
@@ -602,6 +690,9 @@ def main(argv=None) -> int:
     ap.add_argument("--no-proposal", action="store_true", help="skip the proposal proof")
     ap.add_argument("--trials", type=int, default=3,
                     help="proposal-proof trials (seeds) per indistinguishable case")
+    ap.add_argument("--proof-rows", type=int, default=None,
+                    help="proposed (and random) designs added per proposal-proof trial "
+                         "(default: the workflow's number of proposed samples)")
     ap.add_argument("--list", action="store_true", help="print the case ids and exit")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args(argv)
@@ -631,7 +722,7 @@ def main(argv=None) -> int:
             r = done[case["id"]]
         else:
             try:
-                r = run_case(case, not args.no_proposal, args.trials)
+                r = run_case(case, not args.no_proposal, args.trials, args.proof_rows)
             except InvalidInputError as exc:       # e.g. a strength whose data do not solve
                 r = {**case, "error": str(exc)}
                 print(f"{r['id']}: no dataset: {exc}", file=sys.stderr, flush=True)
