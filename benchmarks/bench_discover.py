@@ -323,20 +323,21 @@ def oracle_fit(case, designs, split, kp, clean, disc) -> dict:
     refits are run as the workflow runs them); ``score``: what the
     oracle would score by the benchmark's rule (1 named, 1/2 with rivals, 0 not significant),
     the ceiling of this case on this draw."""
-    from stitchswitch.validation.discovery.cv import cross_validate, f_test, fold_labels
+    from stitchswitch.validation.discovery.cv import f_test, fold_labels
     from stitchswitch.validation.discovery.evaluate import Evaluator
     from stitchswitch.validation.discovery.fit import fit
     from stitchswitch.validation.discovery.space import BASE_FREE, ModelSpec
     from stitchswitch.validation.discovery.synthetic import START_MATERIAL, TRUE_MATERIAL
-    from stitchswitch.validation.discovery.workflow import DiscoveryConfig, rivals
+    from stitchswitch.validation.discovery.workflow import DiscoveryConfig, fold_refits, rivals
 
+    config = DiscoveryConfig()
     tr = np.array(split) == "train"
     d_tr = [d for d, t in zip(designs, tr) if t]
     d_va = [d for d, t in zip(designs, tr) if not t]
     spec = ModelSpec(START_MATERIAL, case["source"], BASE_FREE)
     x0 = spec.encode(TRUE_MATERIAL, tuple(case["values"]))
     ev = Evaluator(targets=dict(zip(d_tr, kp[tr])))
-    f = fit(spec, ev, d_tr, kp[tr], x0, max_nfev=DiscoveryConfig().fit_max_nfev)
+    f = fit(spec, ev, d_tr, kp[tr], x0, max_nfev=config.fit_max_nfev)
     pred = np.empty_like(clean)
     pred[tr], pred[~tr] = f.predictions, ev.one(spec, f.x, d_va)
     gap = _gap(pred, clean, ~tr)
@@ -344,18 +345,18 @@ def oracle_fit(case, designs, split, kp, clean, disc) -> dict:
     s0 = disc.summary["starting_model"]
     base_mse_mm2 = s0["train_mse_mm2"]
     _, p = f_test(n * base_mse_mm2, n * f.mse_mm2, n, len(BASE_FREE), spec.size)
-    config = DiscoveryConfig()
     passes = bool(f.mse_mm2 < base_mse_mm2 and p < config.alpha / len(config.effects))
-    # the workflow's own rival rule with the oracle's fit as the leader: its held-out losses
-    # (fold refits as the workflow's, then the validation rows) against the other candidates'
-    labels = fold_labels(d_tr, config.folds, config.seed)
-    cvr = cross_validate(spec, ev, d_tr, kp[tr], f.x, labels, max_nfev=config.cv_max_nfev,
-                         radius=config.cv_radius)
-    leader = types.SimpleNamespace(held_out_loss=np.concatenate(
-        [cvr.row_loss, np.mean((pred[~tr] - kp[~tr]) ** 2, axis=1)]))
-    others = [c for c in disc.ranking if c.effect != case["source"]]
-    close = ([c.effect for c in rivals(leader, others, s0["cv_score_mm2"], config.alpha,
-                                       config.seed)] if passes else [])
+    close = []
+    if passes:
+        # the workflow's own rival rule with the oracle's fit as the leader: its held-out
+        # losses (the workflow's fold refits, then the validation rows) against the others'
+        cvr = fold_refits(spec, ev, d_tr, kp[tr], f.x,
+                          fold_labels(d_tr, config.folds, config.seed), config)
+        leader = types.SimpleNamespace(held_out_loss=np.concatenate(
+            [cvr.row_loss, np.mean((pred[~tr] - kp[~tr]) ** 2, axis=1)]))
+        others = [c for c in disc.ranking if c.effect != case["source"]]
+        close = [c.effect for c in rivals(leader, others, s0["cv_score_mm2"], config.alpha,
+                                          config.seed)]
     return {"gap": dict(zip(QUANT, map(float, gap))),
             "fitted": list(map(float, spec.decode(f.x)[1].get(case["source"], ()))),
             "train_mse_mm2": float(f.mse_mm2), "base_train_mse_mm2": float(base_mse_mm2),

@@ -80,7 +80,7 @@ from stitchswitch.validation.measured import QUANTITIES, MeasuredData
 from stitchswitch.validation.metrics import split_metrics
 
 __all__ = ["DiscoveryConfig", "Candidate", "Discovery", "discover", "stage_count", "FORWARD_FITS",
-           "lead_candidate", "rivals", "screen_spec"]
+           "lead_candidate", "rivals", "fold_refits", "screen_spec"]
 
 #: Forward selection fits this many second effects: those whose unabsorbed signature (on top of
 #: the first effect) correlates best with the residual the first one leaves. Fitting all five
@@ -300,7 +300,7 @@ def _effect_values(spec, x, name: str) -> dict:
         name, (0.0,) * len(spec.effect_parameters))))
 
 
-def _fold_refits(spec, ev, designs, measured, x, labels, config):
+def fold_refits(spec, ev, designs, measured, x, labels, config):
     """The full-resolution cross-validation of ``spec`` fitted at ``x``: fold refits with the
     config's budget (``cv_max_nfev``) and radius (``cv_radius``)."""
     return cross_validate(spec, ev, designs, measured, x, labels, max_nfev=config.cv_max_nfev,
@@ -423,8 +423,8 @@ def _forward(first, first_screen, ev, d_tr, m_fit, labels, config, held_out=None
     F, p = f_test(rss(fit_a), rss(ff), m_fit.size, base_f.size, spec_f.size)
     if p >= threshold:
         return {**out, "f_statistic": F, "p_value": p, **rejected}
-    cv_a = _fold_refits(base_f, ev, d_tr, m_fit, fit_a.x, labels, config)
-    cv_f = _fold_refits(spec_f, ev, d_tr, m_fit, ff.x, labels, config)
+    cv_a = fold_refits(base_f, ev, d_tr, m_fit, fit_a.x, labels, config)
+    cv_f = fold_refits(spec_f, ev, d_tr, m_fit, ff.x, labels, config)
     scores = None
     if held_out is not None and len(held_out[0]):
         d_va, m_va, sigma = held_out
@@ -552,7 +552,7 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                                          screen_spec=screen if screen != base else None,
                                          polish_max_nfev=config.polish_max_nfev)
     rss0 = float(np.sum((base_fit.predictions - m_fit) ** 2))
-    cv0 = _fold_refits(base, ev, d_tr, m_fit, base_fit.x, labels, config)
+    cv0 = fold_refits(base, ev, d_tr, m_fit, base_fit.x, labels, config)
     before = np.empty_like(measured)
     before[tr] = base_fit.predictions
     before[va] = ev.one(base, base_fit.x, d_va)
@@ -565,8 +565,8 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
                           "no improvement over the starting model")
         # a leader at zero strength is the starting model itself: it cannot pass, and its
         # held-out error is the starting model's (no fold refits run for it)
-        cvr = cv0 if _zero(f.spec, f.x) else _fold_refits(f.spec, ev, d_tr, m_fit, f.x,
-                                                          labels, config)
+        cvr = cv0 if _zero(f.spec, f.x) else fold_refits(f.spec, ev, d_tr, m_fit, f.x,
+                                                         labels, config)
         c = screened[name]
         final[name] = _candidate(name, f.spec, f, m_fit, cvr, cv0, c.signature,
                                  c.fit_start, rss0, base.size, m, config, ev, d_va, m_va,
