@@ -47,7 +47,10 @@ reduction* (h and r_a, identified cases; target median >= 50 %) is printed with 
 the *oracle's* reduction on the same cases: the true effect fitted to the same noisy training
 rows from the true parameters (``oracle_fit``), what the noise lets a perfect identification
 reach (a best case: where the fit cannot improve on the true parameters it stays at them).
-Runtime per run: the process CPU time with one worker (wall time too; the machine is shared).
+Runtime per run: the process CPU time with one worker (wall time too; the machine is shared),
+with the host it ran on (``host.py``: the libraries' versions, the CPU and its CPU time per
+Newton iteration, which the CPU seconds scale with; the verdicts too can differ from host to
+host).
 
 The *proposal proof*: for every case whose verdict is "indistinguishable", ``--trials`` times
 (each trial its own seed for the random designs and for the noise of the new rows, the same
@@ -77,6 +80,8 @@ import time
 import types
 
 import numpy as np
+
+import host
 
 QUANT = ("h", "r_a", "z_a", "r_b", "z_b")
 GROUPS = ("lib", "null", "foreign", "small", "two", "fem", "pairs", "hetero")
@@ -392,6 +397,7 @@ def run_case(case: dict, proposal: bool = True, trials: int = 3, rows: int | Non
         "share_explained": s["systematic"]["share_explained"],
         "noise_sigma_est": s["noise_floor"]["sigma_mm"],
         "cpu_seconds": cpu, "wall_seconds": wall, "solves": disc.solves,
+        "host": host.record(),
     }
     if case["group"] in ("lib", "small", "two", "pairs"):
         out["detectability"] = detectability(case, designs, split, clean)
@@ -508,6 +514,7 @@ def summarize(results: list) -> dict:
     oracle = {q: [_red(r["gap_before"][q], r["oracle"]["gap"][q]) for r in ident if "oracle" in r]
               for q in ("h", "r_a")}
     cpu = [r["cpu_seconds"] for r in results]
+    hosts = sorted({host.describe(r["host"]) for r in results if "host" in r})
     wall = [r["wall_seconds"] for r in results]
     trials, outside = _proof_trials(results)
     resolved = {k: sum(r["source"] == t[k]["named"] for r, t in trials)
@@ -567,6 +574,7 @@ def summarize(results: list) -> dict:
                         for r in results if r["group"] == "two"},
         "proposal_trials": len(trials), "resolved": resolved, "resolved_paired": paired,
         "proposal_trials_outside_proof": outside,
+        "hosts": hosts,
         "cpu_seconds_median": float(np.median(cpu)) if cpu else float("nan"),
         "cpu_seconds_max": float(np.max(cpu)) if cpu else float("nan"),
         "wall_seconds_median": float(np.median(wall)) if wall else float("nan"),
@@ -662,7 +670,8 @@ def table(results: list, summary: dict) -> str:
                 for cid, o in s["proposal_trials_outside_proof"].items()),
               f"runtime per run, one worker: CPU median {s['cpu_seconds_median']:.0f} s, max "
               f"{s['cpu_seconds_max']:.0f} s (target <= 60 s); wall median "
-              f"{s['wall_seconds_median']:.0f} s, max {s['wall_seconds_max']:.0f} s (shared machine)"]
+              f"{s['wall_seconds_median']:.0f} s, max {s['wall_seconds_max']:.0f} s (shared machine)",
+              *(f"  host: {h}" for h in s["hosts"])]
     for k, v in s["targets"].items():
         lines.append(f"  {'PASS' if v else 'FAIL'}  {k}")
     return "\n".join(lines)
