@@ -25,8 +25,8 @@ import argparse
 import json
 import statistics
 import sys
-import time
 
+from host import timed_solves
 from stitchswitch import DEFAULT_MATERIAL, Patch, solve
 
 DIAMETERS_MM = (15, 25, 40, 55, 70, 85, 100)
@@ -44,11 +44,7 @@ def run(adam_steps: int, repeats: int) -> dict:
     for d in DIAMETERS_MM:
         for p in FILLS:
             patch = Patch(d, p)
-            runs, cpu = [], []
-            for _ in range(repeats):
-                t = time.process_time()
-                runs.append(solve(patch, DEFAULT_MATERIAL))
-                cpu.append(time.process_time() - t)
+            runs, cpu = timed_solves(patch, DEFAULT_MATERIAL, repeats)
             newton = runs[0]
             adam = solve(patch, DEFAULT_MATERIAL, solver="adam", max_iter=adam_steps)
             designs.append({

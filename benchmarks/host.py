@@ -33,19 +33,27 @@ def _cpu_model() -> str:
     return platform.processor() or platform.machine()
 
 
+def timed_solves(patch, material, repeats: int) -> tuple[list, list]:
+    """``repeats`` cold certified solves of ``patch``: the solutions and the process CPU time
+    (s) of each."""
+    from stitchswitch import solve
+
+    runs, cpu = [], []
+    for _ in range(repeats):
+        t = time.process_time()
+        runs.append(solve(patch, material))
+        cpu.append(time.process_time() - t)
+    return runs, cpu
+
+
 def _per_iteration_us() -> float:
     from stitchswitch import DEFAULT_MATERIAL, Patch, solve
 
     solve(Patch(*DESIGNS[0]), DEFAULT_MATERIAL)              # load the compiled kernels
     per = []
     for d, p in DESIGNS:
-        best, iterations = float("inf"), 1
-        for _ in range(REPEATS):
-            t = time.process_time()
-            sol = solve(Patch(d, p), DEFAULT_MATERIAL)
-            best = min(best, time.process_time() - t)
-            iterations = max(sol.iterations, 1)
-        per.append(best / iterations * 1e6)
+        runs, cpu = timed_solves(Patch(d, p), DEFAULT_MATERIAL, REPEATS)
+        per.append(min(cpu) / max(runs[0].iterations, 1) * 1e6)
     return float(statistics.median(per))
 
 
