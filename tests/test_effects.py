@@ -2,6 +2,8 @@
 strength is the starting model bit for bit, continuity at zero, each effect changes the
 keypoints, and the registry. The added terms' own derivatives are tested in
 tests/test_energy_terms.py."""
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -140,3 +142,31 @@ def test_registering_a_new_effect_takes_a_few_lines():
         assert sol.material.k_theta_fab == pytest.approx(0.25)
     finally:
         REGISTRY.pop("test_soft_hoop")
+
+
+def test_a_grid_effect_is_applied_once_per_grid_and_changes_no_number(monkeypatch):
+    """Every term of a configured model takes its coefficients from one transformed grid
+    (the transform runs once per grid, not once per term); a new grid is transformed anew."""
+    from stitchswitch.validation.discovery.effects import model as effects_model
+
+    effect = get_effect("fill_exponent")
+    material, terms = configure(PATCH, FAST, {"fill_exponent": (0.7,)})
+    grid, other = make_grid(PATCH, material), make_grid(Patch(30.0, 0.8), material)
+    expected = [[t.coefficients(g) for t in terms] for g in (grid, other)]
+    calls = []
+
+    def counted(g, patch, material, values):
+        calls.append(g)
+        return effect.grid(g, patch, material, values)
+
+    monkeypatch.setattr(effects_model, "resolve",
+                        lambda name: dataclasses.replace(effect, grid=counted))
+    _, counted_terms = configure(PATCH, FAST, {"fill_exponent": (0.7,)})
+    got = [[t.coefficients(grid) for t in counted_terms]]
+    assert len(calls) == 1 and len(counted_terms) > 1
+    got.append([t.coefficients(other) for t in counted_terms])
+    assert len(calls) == 2 and calls[1] is other
+    for a, b in zip(got, expected):
+        for coef_a, coef_b in zip(a, b):
+            for x, y in zip(coef_a, coef_b):
+                np.testing.assert_array_equal(x, y)

@@ -1,9 +1,13 @@
 """The fused compiled energy (``solvers.fused``) against the Python assembly of the same terms,
-and the compiled Newton loop against the interpreted one."""
+the compiled Newton loop against the interpreted one, the coefficients' conversion against
+numpy's general rule, and one prepared energy (``newton.prepare``) serving several starts."""
 import dataclasses
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from hypothesis.extra import numpy as hnp
 
 from stitchswitch import DEFAULT_MATERIAL, Patch
 from stitchswitch.reduced.model import assembly
@@ -146,3 +150,37 @@ def test_compiled_and_interpreted_newton_reach_the_same_certified_state(design):
     np.testing.assert_allclose(a.r, b.r, atol=1e-6)
     again = newton.minimize(grid, r0, z0, tol=DEFAULT_TOL, max_iter=300)
     assert np.array_equal(again.z, a.z) and again.iterations == a.iterations     # deterministic
+
+
+_VALUES = st.one_of(
+    st.floats(allow_nan=False), st.integers(-5, 5),
+    st.builds(np.float64, st.floats(allow_nan=False)),
+    hnp.arrays(st.sampled_from([np.float64, np.float32, np.int64]),
+               hnp.array_shapes(min_dims=0, max_dims=2, max_side=3)),
+    hnp.arrays(np.float64, (6,)).map(lambda a: a[::2]),          # not contiguous
+    st.lists(st.floats(allow_nan=False), max_size=3))
+
+
+@given(value=_VALUES, ndim=st.sampled_from(["index", -1, 1, 2]))
+def test_prepared_coefficients_follow_the_general_rule(value, ndim):
+    """The fast paths of ``_prepared`` give what numpy's conversion gives."""
+    got, want = fused._prepared(value, ndim), fused._converted(value, ndim)
+    assert (got is None) == (want is None)
+    if want is not None:
+        assert type(got) is type(want)
+        np.testing.assert_array_equal(got, want)
+        assert np.asarray(got).dtype == np.asarray(want).dtype
+
+
+@pytest.mark.parametrize("terms", [None, ALL_TERMS[:-1] + (dataclasses.replace(
+    ALL_TERMS[-1], accumulate=lambda r, z, c, g, h: ALL_TERMS[-1].accumulate(r, z, c, g, h)),)],
+    ids=["fused", "interpreted"])
+def test_a_prepared_energy_serves_several_starts_with_the_same_result(terms):
+    grid = make_grid(Patch(40.0, 0.8), DEFAULT_MATERIAL)
+    prepared = newton.prepare(grid, terms)
+    for fraction in (continuation.SEED_FRACTION, continuation.RETRY_SEED_FRACTION):
+        r0, z0 = continuation.released_state(grid, fraction)
+        a = newton.minimize(grid, r0, z0, tol=DEFAULT_TOL, max_iter=300, terms=terms)
+        b = newton.minimize(grid, r0, z0, tol=DEFAULT_TOL, max_iter=300, prepared=prepared)
+        assert a.converged and a.iterations == b.iterations and a.energy == b.energy
+        assert np.array_equal(a.r, b.r) and np.array_equal(a.z, b.z)

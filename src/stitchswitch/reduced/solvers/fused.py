@@ -55,7 +55,20 @@ EXTRA_LAYOUT = ((1, -1, -1), (1, 1), (1,), (1,))
 
 
 def _prepared(value, ndim):
-    """A coefficient as the compiled functions take it, or None if it has another shape."""
+    """A coefficient as the compiled functions take it, or None if it has another shape:
+    ``_converted``'s result, with its two common cases (a contiguous float array, returned as
+    it is, and a Python float) answered without numpy's conversion."""
+    if (type(value) is np.ndarray and value.ndim and value.dtype == np.float64
+            and value.flags.c_contiguous):
+        return value if ndim == value.ndim else None
+    if type(value) is float and ndim == -1:
+        return value
+    return _converted(value, ndim)
+
+
+def _converted(value, ndim):
+    """The general rule: ``value`` converted by numpy for ``ndim`` ("index": a 1-d integer
+    array; -1: a scalar; else a float array of that many dimensions), or None."""
     if ndim == "index":
         a = np.ascontiguousarray(value)
         return a.astype(np.int64) if a.ndim == 1 and a.dtype.kind in "iu" else None

@@ -89,9 +89,12 @@ def _escape(energy, n_inside, r, z, E, ab, dof_map):
     return None
 
 
-def _evaluator(grid: Grid, terms):
-    """(iterate, model, energy): the compiled loop with the fused coefficients when ``terms``
-    allow it (``fused.coefficients``), else the interpreted loop over an ``assembly.Model``."""
+def prepare(grid: Grid, terms=None):
+    """(iterate, model, energy) of ``grid`` and ``terms`` (default ``terms.ALL_TERMS``): the
+    compiled loop with the fused coefficients when ``terms`` allow it (``fused.coefficients``),
+    else the interpreted loop over an ``assembly.Model``. ``minimize`` takes it as
+    ``prepared``, so that several starts on one grid compute the coefficients once."""
+    terms = ALL_TERMS if terms is None else terms
     coefficients = fused.coefficients(terms, grid)
     if coefficients is not None:
         return (newton_loop.fused_iterate, coefficients,
@@ -106,10 +109,11 @@ def _evaluator(grid: Grid, terms):
 
 
 def minimize(grid: Grid, r0: np.ndarray, z0: np.ndarray, *, tol: float = 1e-10,
-             max_iter: int = 200, terms=None) -> NewtonResult:
+             max_iter: int = 200, terms=None, prepared=None) -> NewtonResult:
     """Minimize the reduced energy from an admissible start (r0, z0), dR units. ``terms``:
-    the energy terms (default: ``terms.ALL_TERMS``; variants and added effects go here)."""
-    iterate, model, energy = _evaluator(grid, ALL_TERMS if terms is None else terms)
+    the energy terms (default: ``terms.ALL_TERMS``; variants and added effects go here);
+    ``prepared``: ``prepare(grid, terms)`` computed before (then ``terms`` is not used)."""
+    iterate, model, energy = prepare(grid, terms) if prepared is None else prepared
     r = np.array(r0, dtype=float)
     u = np.maximum(np.asarray(z0[:-1], float) - np.asarray(z0[1:], float), 0.0)
     u[0] = 0.0

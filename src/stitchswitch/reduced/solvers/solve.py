@@ -136,16 +136,18 @@ def _solve(patch: Patch, material: Material, *, solver: str, tol: float, max_ite
     if solver == "newton":
         budget = 500 if max_iter is None else int(max_iter)
         result, used = None, 0
+        prepared = newton.prepare(grid, terms)        # one set of coefficients for each start
         if warm_start is not None:
             r0, z0 = _warm_profile(warm_start, grid)
             # at most half the budget: a warm start that fails leaves the cold start room
-            result = newton.minimize(grid, r0, z0, tol=tol, max_iter=budget // 2, terms=terms)
+            result = newton.minimize(grid, r0, z0, tol=tol, max_iter=budget // 2,
+                                     prepared=prepared)
             used = result.iterations
             if not result.converged:
                 result = None
         if result is None:
             result = newton.minimize(grid, *continuation.released_state(grid), tol=tol,
-                                     max_iter=max(budget - used, 0), terms=terms)
+                                     max_iter=max(budget - used, 0), prepared=prepared)
             used += result.iterations
         if not result.converged and used < budget:
             result, more = continuation.release(grid, tol=tol, max_iter=budget - used,
@@ -156,7 +158,7 @@ def _solve(patch: Patch, material: Material, *, solver: str, tol: float, max_ite
             # one: try a taller seed and keep the lower certified state
             retry = newton.minimize(grid, *continuation.released_state(
                 grid, continuation.RETRY_SEED_FRACTION), tol=tol, max_iter=budget - used,
-                terms=terms)
+                prepared=prepared)
             used += retry.iterations
             if retry.converged and retry.second_order and retry.energy < result.energy:
                 result = retry

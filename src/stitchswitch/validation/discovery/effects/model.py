@@ -7,7 +7,9 @@
 2. material changes are applied in the order of ``active``;
 3. grid changes (rest metric, stiffnesses) are composed into one function, applied to the grid
    of every term through a thin wrapper (a ``Term`` with other coefficients, the idiom of
-   ``reduced.model.terms.variants``): the solver, the continuation and the keypoints are untouched;
+   ``reduced.model.terms.variants``): the solver, the continuation and the keypoints are untouched.
+   The function keeps its last result, so the terms asking in turn for the same grid (the
+   solver's coefficients, once per Newton start) share one transformed grid;
 4. extra terms are appended to ``terms.ALL_TERMS``.
 
 ``solve_effects(patch, material, active)`` is ``solve`` on the result.
@@ -42,10 +44,16 @@ def configure(patch: Patch, material: Material, active) -> tuple[Material, tuple
     if not transforms and not extra:
         return material, None
 
+    last = []                  # (grid, transformed): every term asks for the same grid
+
     def transform(grid):
+        if last and last[0] is grid:
+            return last[1]
+        out = grid
         for fn, values in transforms:
-            grid = fn(grid, patch, material, values)
-        return grid
+            out = fn(out, patch, material, values)
+        last[:] = (grid, out)
+        return out
 
     terms = ALL_TERMS + extra
     if transforms:
