@@ -134,13 +134,19 @@ def test_other_term_tuples_take_the_python_path():
     assert fused.coefficients(ALL_TERMS + (wrapped,), grid) is None      # another kernel
 
 
+def _interpreted_terms():
+    """The default terms with the bending kernel wrapped in a Python function: the same energy,
+    which ``fused.coefficients`` does not recognize, so the solver runs it interpreted."""
+    bending = ALL_TERMS[-1]
+    wrapped = dataclasses.replace(bending, accumulate=lambda r, z, c, g, h: bending.accumulate(r, z, c, g, h))
+    return ALL_TERMS[:-1] + (wrapped,)
+
+
 @pytest.mark.parametrize("design", [(25.0, 1.0), (70.0, 0.6)])
 def test_compiled_and_interpreted_newton_reach_the_same_certified_state(design):
     grid = make_grid(Patch(*design), DEFAULT_MATERIAL)
     r0, z0 = continuation.released_state(grid)
-    bending = ALL_TERMS[-1]
-    wrapped = dataclasses.replace(bending, accumulate=lambda r, z, c, g, h: bending.accumulate(r, z, c, g, h))
-    interpreted_terms = ALL_TERMS[:-1] + (wrapped,)
+    interpreted_terms = _interpreted_terms()
     assert fused.coefficients(interpreted_terms, grid) is None
     a = newton.minimize(grid, r0, z0, tol=DEFAULT_TOL, max_iter=300)
     b = newton.minimize(grid, r0, z0, tol=DEFAULT_TOL, max_iter=300, terms=interpreted_terms)
@@ -172,9 +178,7 @@ def test_prepared_coefficients_follow_the_general_rule(value, ndim):
         assert np.asarray(got).dtype == np.asarray(want).dtype
 
 
-@pytest.mark.parametrize("terms", [None, ALL_TERMS[:-1] + (dataclasses.replace(
-    ALL_TERMS[-1], accumulate=lambda r, z, c, g, h: ALL_TERMS[-1].accumulate(r, z, c, g, h)),)],
-    ids=["fused", "interpreted"])
+@pytest.mark.parametrize("terms", [None, _interpreted_terms()], ids=["fused", "interpreted"])
 def test_a_prepared_energy_serves_several_starts_with_the_same_result(terms):
     grid = make_grid(Patch(40.0, 0.8), DEFAULT_MATERIAL)
     prepared = newton.prepare(grid, terms)
