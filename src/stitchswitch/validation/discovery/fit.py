@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Fit", "fit", "evaluated", "jacobian", "scan_values", "scan_effect", "second_basin",
+__all__ = ["Fit", "fit", "trust_box", "evaluated", "jacobian", "scan_values", "scan_effect", "second_basin",
            "linearized_start", "fit_effect", "equal_footing", "follow_branches", "SECOND_BASIN",
            "BRANCH_MM", "BRANCH_SHARE", "BELOW_PROBE", "PROFILE_NFEV", "refine_estimate",
            "ESTIMATE_FACTORS"]
@@ -101,6 +101,16 @@ def jacobian(spec, ev, designs, x, lo, hi, columns: int | None = None):
     return np.stack([(preds[k] - centre).ravel() / h for k, h in enumerate(signed)], axis=1)
 
 
+def trust_box(spec, x0, radius: float | None = None):
+    """(``x0`` clipped into ``spec``'s bounds, (lo, hi) the bounds, (lo, hi) of the box within
+    ``radius`` of it in every coordinate, inside the bounds; the bounds with no radius)."""
+    lo, hi = spec.bounds()
+    x0 = np.clip(np.asarray(x0, dtype=float), lo, hi)
+    if radius is None:
+        return x0, (lo, hi), (lo, hi)
+    return x0, (lo, hi), (np.maximum(lo, x0 - radius), np.minimum(hi, x0 + radius))
+
+
 def fit(spec, ev, designs, measured, x0, *, max_nfev: int = 20, free: int | None = None,
         radius: float | None = None) -> Fit:
     """Least squares from ``x0`` (clipped into the bounds) with at most ``max_nfev`` steps; with
@@ -110,11 +120,7 @@ def fit(spec, ev, designs, measured, x0, *, max_nfev: int = 20, free: int | None
     from scipy.optimize import least_squares
 
     measured = np.asarray(measured, dtype=float)
-    lo, hi = spec.bounds()
-    x0 = np.clip(np.asarray(x0, dtype=float), lo, hi)
-    box_lo, box_hi = lo, hi
-    if radius is not None:
-        box_lo, box_hi = np.maximum(lo, x0 - radius), np.minimum(hi, x0 + radius)
+    x0, (lo, hi), (box_lo, box_hi) = trust_box(spec, x0, radius)
     k = len(x0) if free is None else int(free)
     whole = lambda y: np.concatenate([y, x0[k:]])                      # noqa: E731
     calls = [0]

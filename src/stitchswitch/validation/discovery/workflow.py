@@ -15,8 +15,9 @@ propose the samples that would decide.
    resolution; it only picks the leaders.
 3. **Refine the leaders**: the ``config.refine`` best-screened candidates are polished,
    profiled along their strength (``fit.refine_estimate``, ``config.profile_leaders``) and
-   cross-validated (``cv``, fold refits of at most one step) at full resolution; a leader at
-   zero strength is the starting model and takes its cross-validation. The starting model is
+   cross-validated at full resolution (``cv.cross_validate_stepped``: each fold one damped
+   step from the full fit, its held-out designs warm-started on the full fit's branch); a
+   leader at zero strength is the starting model and takes its cross-validation. The starting model is
    re-polished from the coefficients of every leader that would pass the F test
    (``fit.equal_footing``): both sides of the nested comparison are fitted equally well, so an
    effect at zero strength cannot look significant.
@@ -51,6 +52,7 @@ from stitchswitch.errors import InvalidInputError
 from stitchswitch.reduced.model.params import Material
 from stitchswitch.validation.discovery.cv import (
     cross_validate,
+    cross_validate_stepped,
     f_test,
     fold_labels,
     sign_flip_test,
@@ -86,6 +88,9 @@ __all__ = ["DiscoveryConfig", "Candidate", "Discovery", "discover", "stage_count
 #: the first effect) correlates best with the residual the first one leaves. Fitting all five
 #: others from two starts each was most of a run's cost when it ran (63 of 143 s CPU).
 FORWARD_FITS = 2
+#: How a full-resolution cross-validation moves each fold from the full fit
+#: (``DiscoveryConfig.cv_method``).
+CV_METHODS = ("refit", "stepped")
 
 
 @dataclass(frozen=True)
@@ -95,8 +100,14 @@ class DiscoveryConfig:
     ``de_generations``: differential-evolution generations before the starting model's least
     squares (0: least squares from the starting material only), population ``de_popsize``.
     ``fit_max_nfev`` / ``cv_max_nfev``: least-squares steps of a full fit / of a fold refit;
-    ``cv_radius``: how far (search units) a fold refit may move from the full fit in any
-    coordinate (``cv.cross_validate``; None: anywhere in the bounds).
+    ``cv_radius``: how far (search units) a fold may move from the full fit in any
+    coordinate (None: anywhere in the bounds). ``cv_method``: how the full-resolution
+    cross-validation moves a fold: "stepped" (one damped step per fold, Marquardt damping
+    ``cv_damping``, held-out designs warm-started from the full fit's equilibria:
+    ``cv.cross_validate_stepped``) or "refit" (fold refits of ``cv_max_nfev`` evaluations,
+    ``cv.cross_validate``). A stepped fold keeps the full fit only when its step is zero; a
+    refit with one trial step often keeps it, its held-out rows then predicted in-sample
+    (docs/discovery.md, "The stepped cross-validation").
     ``scan_points``: magnitudes of the strength scan. ``permutations``: of the residual test.
     ``screen_nodes``: the resolution (nodes) at which every candidate is screened (fitted with
     at most ``screen_max_nfev`` steps and cross-validated with one-step fold refits) before the
@@ -127,6 +138,8 @@ class DiscoveryConfig:
     fit_max_nfev: int = 25
     cv_max_nfev: int = 2
     cv_radius: float | None = 1.0
+    cv_method: str = "stepped"
+    cv_damping: float = 0.1
     scan_points: int = 5
     permutations: int = 2000
     screen_nodes: int | None = 150
@@ -158,6 +171,11 @@ class DiscoveryConfig:
                      "refine", "polish_max_nfev", "propose", "screen_max_nfev"):
             if int(getattr(self, name)) < (2 if name == "folds" else 0 if name == "propose" else 1):
                 raise InvalidInputError(f"{name}: {getattr(self, name)!r} is too small")
+        if self.cv_method not in CV_METHODS:
+            raise InvalidInputError(f"cv_method: {self.cv_method!r} is not one of "
+                                    f"{', '.join(CV_METHODS)}")
+        if not self.cv_damping > 0:
+            raise InvalidInputError(f"cv_damping: {self.cv_damping!r} must be > 0")
         if self.cv_radius is not None and not self.cv_radius > 0:
             raise InvalidInputError(f"cv_radius: {self.cv_radius!r} must be > 0 (or None)")
         if self.screen_nodes is not None and int(self.screen_nodes) < 20:
@@ -205,7 +223,7 @@ class Candidate:
     row_loss: np.ndarray | None = field(default=None, repr=False, compare=False)
     val_row_loss: np.ndarray | None = field(default=None, repr=False, compare=False)
     cv_folds: int = 0
-    cv_stuck_folds: int = 0      # folds whose refit kept the full fit (``cv.cross_validate``)
+    cv_stuck_folds: int = 0      # folds that kept the full fit's parameters exactly
 
     @property
     def held_out_loss(self) -> np.ndarray:
@@ -301,8 +319,12 @@ def _effect_values(spec, x, name: str) -> dict:
 
 
 def fold_refits(spec, ev, designs, measured, x, labels, config):
-    """The full-resolution cross-validation of ``spec`` fitted at ``x``: fold refits with the
-    config's budget (``cv_max_nfev``) and radius (``cv_radius``)."""
+    """The full-resolution cross-validation of ``spec`` fitted at ``x``: with ``cv_method``
+    "stepped", one damped step per fold (``cv_damping``) within the config's radius
+    (``cv_radius``); with "refit", fold refits with the config's budget (``cv_max_nfev``)."""
+    if config.cv_method == "stepped":
+        return cross_validate_stepped(spec, ev, designs, measured, x, labels,
+                                      damping=config.cv_damping, radius=config.cv_radius)
     return cross_validate(spec, ev, designs, measured, x, labels, max_nfev=config.cv_max_nfev,
                           radius=config.cv_radius)
 
