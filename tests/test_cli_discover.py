@@ -128,3 +128,20 @@ def test_demo_names_its_hidden_effect(tmp_path):
     assert doc["effect_parameters"] == est["effect_parameters"]
     assert est["train_mse_mm2"] <= est["train_mse_mm2_before"]
     assert "estimate (refitted after the decision" in r.stdout
+    # ... and from the starting material's own coefficients, the lower misfit kept
+    prior = est["prior_start"]
+    assert est["train_mse_mm2"] <= min(prior["train_mse_mm2_prior"], prior["train_mse_mm2_before"])
+    assert prior["kept"] == ("prior" if prior["train_mse_mm2_prior"] < prior["train_mse_mm2_before"]
+                             else "calibrated")
+
+
+def test_the_report_says_when_the_estimate_came_from_the_prior_coefficients():
+    from stitchswitch.validation.discovery.report import _estimate
+
+    est = {"train_mse_mm2_before": 3.3, "train_mse_mm2": 3.1,
+           "prior_start": {"kept": "prior", "train_mse_mm2_prior": 3.1,
+                           "train_mse_mm2_before": 3.2}}
+    assert "from the starting material's own coefficients" in _estimate({"estimate": est})
+    est["prior_start"]["kept"] = "calibrated"
+    assert "coefficients" not in _estimate({"estimate": est})
+    assert _estimate({"estimate": None}) == ""

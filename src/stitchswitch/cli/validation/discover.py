@@ -174,7 +174,10 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
     lines.append(f"  {rep['decision']}")
     est = rep.get("estimate")
     if est:
-        lines.append("  estimate (refitted after the decision, its strength profiled): " + ", ".join(
+        prior = (", then from the starting material's coefficients"
+                 if est.get("prior_start", {}).get("kept") == "prior" else "")
+        lines.append(f"  estimate (refitted after the decision, its strength profiled{prior}): "
+                     + ", ".join(
             f"{k}={v:.4g}" for k, v in est["effect_parameters"].items())
             + f"; training MSE {est['train_mse_mm2_before']:.3f} -> {est['train_mse_mm2']:.3f} mm^2")
     if rep.get("unexplained_residual"):

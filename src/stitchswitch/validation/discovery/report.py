@@ -208,9 +208,11 @@ def _estimate(rep: dict) -> str:
     e = rep.get("estimate")
     if not e:
         return ""
-    return (f" (the named model refitted after the decision, its strength profiled: training "
-            f"MSE {e['train_mse_mm2_before']:.3f} -> {e['train_mse_mm2']:.3f} mm^2; the ranking "
-            "shows the fit that was tested)")
+    prior = (", then from the starting material's own coefficients"
+             if e.get("prior_start", {}).get("kept") == "prior" else "")
+    return (f" (the named model refitted after the decision, its strength profiled{prior}: "
+            f"training MSE {e['train_mse_mm2_before']:.3f} -> {e['train_mse_mm2']:.3f} mm^2; the "
+            "ranking shows the fit that was tested)")
 
 
 def unabs(x: float) -> str:

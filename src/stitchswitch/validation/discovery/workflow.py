@@ -15,12 +15,13 @@ propose the samples that would decide.
    resolution; it only picks the leaders.
 3. **Refine the leaders**: the ``config.refine`` best-screened candidates are polished,
    profiled along their strength (``fit.refine_estimate``, ``config.profile_leaders``) and
-   cross-validated at full resolution (``cv.cross_validate_stepped``: each fold one damped
-   step from the full fit, its held-out designs warm-started on the full fit's branch); a
-   leader at zero strength is the starting model and takes its cross-validation. The starting model is
-   re-polished from the coefficients of every leader that would pass the F test
-   (``fit.equal_footing``): both sides of the nested comparison are fitted equally well, so an
-   effect at zero strength cannot look significant.
+   cross-validated at full resolution
+   (``cv.cross_validate_stepped``: each fold one damped step from the full fit, its held-out
+   designs warm-started on the full fit's branch); a leader at zero strength is the starting
+   model and takes its cross-validation. The starting model is re-polished from the
+   coefficients of every leader that would pass the F test (``fit.equal_footing``): both
+   sides of the nested comparison are fitted equally well, so an effect at zero strength
+   cannot look significant.
 4. **Decide**: a candidate passes when it lowers the starting model's
    cross-validated error, its F test against the equally polished starting model gives p <
    alpha / (number of candidates), and its strength is not zero; the decision is about the
@@ -34,12 +35,15 @@ propose the samples that would decide.
    (``residuals.not_shrunk``), and must predict the file's validation rows better than the
    starting model (``cv.validation_score``, the noise-weighted MAE).
 5. **Report** the named model as estimated after the decision (``fit.refine_estimate``: its
-   strength profiled and every parameter refitted with the full step budget; the ranking
-   keeps the fit that was tested), the residual tests before and after (``residuals``; a systematic residual left
-   is "an unexplained residual"), the estimated noise floor and the share of the systematic
-   residual explained, and the next samples (``proposal``) that best separate the leading
-   models. The validation rows take no part in fitting or ranking; they veto a name and
-   help tell the leader from its rivals.
+   strength profiled and every parameter refitted with the full step budget; then
+   ``fit.prior_restart``, ``config.prior_start``: refitted from the starting material's own
+   coefficients at that strength, the better fit kept, since the calibrated coefficients have
+   absorbed part of the effect; the ranking keeps the fit that was tested), the residual
+   tests before and after (``residuals``; a systematic residual left is "an unexplained
+   residual"), the estimated noise floor and the share of the systematic residual explained,
+   and the next samples (``proposal``) that best separate the leading models. The validation
+   rows take no part in fitting or ranking; they veto a name and help tell the leader from its
+   rivals.
 """
 from __future__ import annotations
 
@@ -67,6 +71,7 @@ from stitchswitch.validation.discovery.fit import (
     fit,
     fit_effect,
     jacobian,
+    prior_restart,
     refine_estimate,
 )
 from stitchswitch.validation.discovery.noise.proportional import (
@@ -127,7 +132,13 @@ class DiscoveryConfig:
     (``fit.scan_effect``; 0: the one-step correction only). ``profile_leaders``: each leader
     polished at full resolution at a non-zero strength is profiled along its strength and
     refitted (``fit.refine_estimate``) before it is tested: a leader stopped short of its basin
-    loses to a rival that happened to get closer to its own."""
+    loses to a rival that happened to get closer to its own. ``prior_start``: the named
+    effect's estimate is also refitted from the starting material's own coefficients at its
+    estimated strength, and the better fit kept (``fit.prior_restart``): the calibrated
+    starting model has absorbed part of the effect into its coefficients, and a fit from them
+    can stay in that basin. Only the estimate: at the leaders, before the decision, the same
+    restart also re-polishes the starting model (equal footing) and was measured to lose two
+    half-identifications (docs/discovery.md, "Starting from the prior coefficients")."""
 
     effects: tuple | None = None
     folds: int = 5
@@ -153,6 +164,7 @@ class DiscoveryConfig:
     branches: bool = True
     profile_points: int = 0
     profile_leaders: bool = True
+    prior_start: bool = True
 
     def __post_init__(self) -> None:
         names = tuple(self.effects) if self.effects is not None else tuple(LIBRARY)
@@ -688,9 +700,16 @@ def discover(data: MeasuredData, start: Material, config: DiscoveryConfig = Disc
     estimate = None
     if verdict == "named":
         # the decision is made; what is reported and predicted is the best estimate of the
-        # named model (its strength profiled, every parameter refitted)
+        # named model (its strength profiled, every parameter refitted, and refitted from the
+        # starting material's own coefficients)
         tested = evaluated(chosen.spec, ev, d_tr, m_fit, chosen.x, 0, "decided")
         best, estimate = refine_estimate(tested, ev, d_tr, m_fit, max_nfev=config.fit_max_nfev)
+        if config.prior_start:
+            best, estimate["prior_start"] = prior_restart(
+                best, ev, d_tr, m_fit, max_nfev=config.screen_max_nfev,
+                polish_max_nfev=config.polish_max_nfev,
+                screen_spec=replace(best.spec, start=screen.start))
+            estimate["train_mse_mm2"] = best.mse_mm2
         estimate["effect_parameters"] = _effect_values(best.spec, best.x, chosen.effect)
         estimate["parameters"] = dict(best.parameters)
         after, split1, res_after, left, explained = with_model(chosen.spec, best.x)
