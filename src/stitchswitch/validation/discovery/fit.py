@@ -368,9 +368,10 @@ def prior_restart(f: Fit, ev, designs, measured, *, max_nfev: int = 12,
 
     Why: the starting model, calibrated on data that carry the missing effect, absorbs what its
     coefficients can of it, and an extended fit started from those absorbed coefficients can
-    stay in their basin (measured: ``benchmarks/bench_basins.py``; boundary_transition x3 ends
-    at a training MSE of 4.31 mm^2 from them and at 3.41 from the starting material's, where
-    the true parameters' fit ends, 3.45). The result has a training misfit at most ``f``'s."""
+    stay in their basin (measured: ``benchmarks/bench_basins.py``; on boundary_transition x3 no
+    start from them ends below a training MSE of 4.31 mm^2, while 8 of 10 from the starting
+    material's end at 3.40-3.52, where the true parameters' fit ends, 3.45). The result has a
+    training misfit at most ``f``'s."""
     spec = f.spec
     values = spec.decode(f.x)[1][spec.effect]
     x0 = spec.encode(spec.start, values)
