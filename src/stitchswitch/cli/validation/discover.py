@@ -145,6 +145,7 @@ def _stuck(row: dict) -> str:
 
 def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> str:
     """The ranking, the verdict and the before/after table as text."""
+    from stitchswitch.validation.discovery.report import estimate_how
     from stitchswitch.validation.measured import QUANTITIES
 
     lines = []
@@ -174,9 +175,7 @@ def summary(rep: dict, elapsed_s: float, solves: int, report_dir, json_out) -> s
     lines.append(f"  {rep['decision']}")
     est = rep.get("estimate")
     if est:
-        prior = (", then from the starting material's coefficients"
-                 if est.get("prior_start", {}).get("kept") == "prior" else "")
-        lines.append(f"  estimate (refitted after the decision, its strength profiled{prior}): "
+        lines.append(f"  estimate (refitted after the decision, {estimate_how(est)}): "
                      + ", ".join(
             f"{k}={v:.4g}" for k, v in est["effect_parameters"].items())
             + f"; training MSE {est['train_mse_mm2_before']:.3f} -> {est['train_mse_mm2']:.3f} mm^2")

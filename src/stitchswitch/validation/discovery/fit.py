@@ -44,7 +44,7 @@ import numpy as np
 
 __all__ = ["Fit", "fit", "trust_box", "evaluated", "jacobian", "scan_values", "scan_effect", "second_basin",
            "linearized_start", "fit_effect", "equal_footing", "follow_branches", "SECOND_BASIN",
-           "prior_restart",
+           "prior_restart", "walked",
            "BRANCH_MM", "BRANCH_SHARE", "BELOW_PROBE", "PROFILE_NFEV", "refine_estimate",
            "ESTIMATE_FACTORS"]
 
@@ -373,16 +373,24 @@ def prior_restart(f: Fit, ev, designs, measured, *, max_nfev: int = 12,
     material's end at 3.40-3.52, where the true parameters' fit ends, 3.45). The result has a
     training misfit at most ``f``'s."""
     spec = f.spec
-    values = spec.decode(f.x)[1][spec.effect]
-    x0 = spec.encode(spec.start, values)
-    if screen_spec is not None:
-        x0 = fit(screen_spec, ev, designs, measured, x0, max_nfev=max_nfev).x
-        g = fit(spec, ev, designs, measured, x0, max_nfev=polish_max_nfev)
-    else:
-        g = fit(spec, ev, designs, measured, x0, max_nfev=max_nfev)
+    x0 = spec.encode(spec.start, spec.decode(f.x)[1][spec.effect])
+    g = walked(spec, ev, designs, measured, x0, max_nfev=max_nfev,
+               polish_max_nfev=polish_max_nfev, screen_spec=screen_spec)
+    kept = g.mse_mm2 < f.mse_mm2
     record = {"train_mse_mm2_before": f.mse_mm2, "train_mse_mm2_prior": g.mse_mm2,
-              "kept": "prior" if g.mse_mm2 < f.mse_mm2 else "calibrated"}
-    return (g if g.mse_mm2 < f.mse_mm2 else f), record
+              "kept": "prior" if kept else "calibrated"}
+    return (g if kept else f), record
+
+
+def walked(spec, ev, designs, measured, x0, *, max_nfev: int, polish_max_nfev: int,
+           screen_spec=None) -> Fit:
+    """``spec`` fitted from ``x0``: with ``screen_spec`` (the same model at the screening
+    resolution) ``max_nfev`` steps there, then ``polish_max_nfev`` at ``spec``'s resolution
+    (most of the walk at a quarter of the cost); without it, ``max_nfev`` steps at ``spec``'s."""
+    if screen_spec is None:
+        return fit(spec, ev, designs, measured, x0, max_nfev=max_nfev)
+    x0 = fit(screen_spec, ev, designs, measured, x0, max_nfev=max_nfev).x
+    return fit(spec, ev, designs, measured, x0, max_nfev=polish_max_nfev)
 
 
 def equal_footing(base_spec, ev, designs, measured, base_fit, fits, passes, *,
@@ -401,12 +409,8 @@ def equal_footing(base_spec, ev, designs, measured, base_fit, fits, passes, *,
         rss0 = float(np.sum((best.predictions - measured) ** 2))
         if not passes(rss0, f):
             continue
-        x0 = np.asarray(f.x)[:k]
-        if screen_spec is not None:
-            x0 = fit(screen_spec, ev, designs, measured, x0, max_nfev=max_nfev).x
-            fr = fit(base_spec, ev, designs, measured, x0, max_nfev=polish_max_nfev)
-        else:
-            fr = fit(base_spec, ev, designs, measured, x0, max_nfev=max_nfev)
+        fr = walked(base_spec, ev, designs, measured, np.asarray(f.x)[:k], max_nfev=max_nfev,
+                    polish_max_nfev=polish_max_nfev, screen_spec=screen_spec)
         log.append({"from": name, "train_mse_mm2": fr.mse_mm2})
         if fr.mse_mm2 < best.mse_mm2:
             best = fr

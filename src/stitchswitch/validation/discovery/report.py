@@ -24,6 +24,7 @@ from stitchswitch.validation.measured import QUANTITIES
 from stitchswitch.validation.report import provenance_statement
 
 __all__ = ["GENERATOR", "REPORT_FILES", "METHOD", "report_dict", "check_discovery_dir",
+           "estimate_how",
            "write_discovery_report", "report_json"]
 
 GENERATOR = "stitchswitch discover"
@@ -203,14 +204,19 @@ def _story(rep: dict) -> dict:
             "after_text": after_text}
 
 
+def estimate_how(estimate: dict) -> str:
+    """How the named model's estimate was refitted (``estimate``: the summary's record)."""
+    prior = estimate.get("prior_start", {}).get("kept") == "prior"
+    return ("its strength profiled" + (", then from the starting material's own coefficients"
+                                       if prior else ""))
+
+
 def _estimate(rep: dict) -> str:
     """How the reported strength was estimated after the decision (empty if not recorded)."""
     e = rep.get("estimate")
     if not e:
         return ""
-    prior = (", then from the starting material's own coefficients"
-             if e.get("prior_start", {}).get("kept") == "prior" else "")
-    return (f" (the named model refitted after the decision, its strength profiled{prior}: "
+    return (f" (the named model refitted after the decision, {estimate_how(e)}: "
             f"training MSE {e['train_mse_mm2_before']:.3f} -> {e['train_mse_mm2']:.3f} mm^2; the "
             "ranking shows the fit that was tested)")
 
