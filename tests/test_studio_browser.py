@@ -79,17 +79,22 @@ def check_software_view(page) -> None:
                          ".getContextAttributes().antialias") is False
 
 
-def errors(page) -> int:
-    return int(re.search(r"Constraints: (\d+) error", page.locator("#check-title").inner_text()).group(1))
-
-
-def test_studio_in_chromium(tmp_path):
+def demo_design(tmp_path):
+    """The tennis-pocket demo's design, the file it is saved to and its canvas view."""
     from stitchswitch.demos.tennis_pocket import build
 
     design = build().design
     path = tmp_path / "tennis-pocket.json"
     save_design(design, path)
-    view = view_of(design)
+    return design, path, view_of(design)
+
+
+def errors(page) -> int:
+    return int(re.search(r"Constraints: (\d+) error", page.locator("#check-title").inner_text()).group(1))
+
+
+def test_studio_in_chromium(tmp_path):
+    design, path, view = demo_design(tmp_path)
     with studio_server(path) as (url, log):
         with browser_page(url) as page:
             circles = page.locator("#canvas circle")
@@ -246,12 +251,7 @@ def test_either_view_follows_the_fill_slider(tmp_path, mode):
     """``--view browser`` (vtk.js draws the scene's arrays in WebGL) and ``--view server`` (VTK
     renders on the server, the page shows its images): a fill step changes the readout and the
     picture of the 3D view, and dragging in the view rotates it."""
-    from stitchswitch.demos.tennis_pocket import build
-
-    design = build().design
-    path = tmp_path / "tennis-pocket.json"
-    save_design(design, path)
-    view = view_of(design)
+    design, path, view = demo_design(tmp_path)
     with studio_server(path, view=mode) as (url, _):
         with browser_page(url) as page:
             assert view_mode(page) == mode
@@ -357,3 +357,51 @@ def test_the_3d_view_shows_the_whole_design_at_the_size_the_page_gives(tmp_path,
             same = lambda png: design_margins(png) == design_margins(fitted)   # noqa: E731
             back = wait_picture(page, same)
             assert design_margins(back) == design_margins(fitted)
+
+
+BUSY_VISIBLE = "getComputedStyle(document.querySelector('#busy')).visibility === 'visible'"
+
+
+def test_the_working_note_shows_only_once_a_call_has_lasted(tmp_path):
+    """No spinning progress circle on the page (trame's footer: it was animated for every call,
+    a slider step's included); the toolbar's "working..." note stays hidden through short calls
+    and shows once the page's busy flag (``trame__busy``, which trame's client sets while a
+    call is in flight) has been up for ``BUSY_AFTER_S``, and goes again when it drops."""
+    import time
+
+    from stitchswitch.studio.app import BUSY_AFTER_S
+
+    design, path, view = demo_design(tmp_path)
+    with studio_server(path) as (url, _):
+        with browser_page(url) as page:
+            assert page.locator(".v-progress-circular").count() == 0
+            assert not page.locator("footer").is_visible()
+            page.wait_for_function(f"!({BUSY_VISIBLE})", timeout=10000)   # the load's calls
+            # warm slider steps' calls are short: the note never shows (the first step after
+            # the selection may fill the server's caches, and is left out)
+            page.mouse.click(*to_px(page, view, *design.patches[0].centre_mm))
+            page.wait_for_selector("#slider-fill .v-slider-thumb")
+            page.locator("#slider-fill .v-slider-thumb").focus()
+            page.keyboard.press("ArrowRight")
+            page.wait_for_timeout(1500)
+            page.wait_for_function(f"!({BUSY_VISIBLE})", timeout=10000)
+            page.evaluate("window.studioBusySeen = false; window.studioBusyWatch = setInterval("
+                          f"() => {{ if ({BUSY_VISIBLE}) window.studioBusySeen = true }}, 20)")
+            for _ in range(3):
+                edits = int(page.locator("#edits").inner_text())
+                page.keyboard.press("ArrowRight")
+                page.wait_for_function(f"Number(document.querySelector('#edits').textContent) > {edits}")
+                page.wait_for_timeout(800)
+            assert page.evaluate("clearInterval(window.studioBusyWatch) || window.studioBusySeen") is False
+            # a call that lasts: the flag up, as trame's client raises it while a call is pending
+            page.evaluate("trame.state.set('trame__busy', 1)")
+            t0 = time.perf_counter()
+            page.wait_for_function(BUSY_VISIBLE, timeout=5000)
+            assert time.perf_counter() - t0 >= BUSY_AFTER_S - 0.05
+            # on screen and on top (not under the drawer)
+            box = page.locator("#busy").bounding_box()
+            assert box["x"] >= 0 and box["y"] + box["height"] <= page.viewport_size["height"]
+            assert page.evaluate(f"document.elementFromPoint({box['x'] + box['width'] / 2}, "
+                                 f"{box['y'] + box['height'] / 2}).id") == "busy"
+            page.evaluate("trame.state.set('trame__busy', 0)")
+            page.wait_for_function(f"!({BUSY_VISIBLE})", timeout=5000)

@@ -90,6 +90,17 @@ SOFTWARE_GL_NO_MSAA = r"""(() => {
 #: the CPU without a GPU, beside the server (the page's main-thread time per slider step:
 #: docs/studio.md, "Speed")
 SLIDER_NO_EASING = "#slider-d *, #slider-fill * { transition: none !important; }"
+#: the page's note that a call to the server is under way (trame's ``trame__busy``), in its
+#: bottom-left corner, shown only once the call has lasted this long (s): a CSS animation's
+#: delay, which draws no frames meanwhile. It stands in for trame's layout footer, whose
+#: progress circle spun whenever a call was in flight: on every slider step the page
+#: re-rendered and rasterized its animation for a few hundred milliseconds, on the CPU without
+#: a GPU, beside the step's image (docs/studio.md, "Speed")
+BUSY_AFTER_S = 0.4
+BUSY_STYLE = (".studio-busy { visibility: hidden; position: fixed; left: 8px; bottom: 6px; "
+              "z-index: 2000; padding: 0 6px; background: white; border: 1px solid #ccc; } "
+              ".studio-busy--on { animation: studio-busy-show 0s linear %gs forwards; } "
+              "@keyframes studio-busy-show { to { visibility: visible; } }" % BUSY_AFTER_S)
 #: the server-rendered view's images: JPEG quality at rest and while rotating or zooming (and
 #: of a dragged slider's drafts, ``ImageChannel``), and full size while rotating (a software
 #: frame of the scene alone takes 13 ms)
@@ -451,7 +462,9 @@ def build_app(session, server=None, view_mode: str = "auto"):
 
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
         layout.title.set_text("stitchswitch studio")
-        client.Style(SLIDER_NO_EASING)
+        layout.footer.clear()       # its progress circle: ``BUSY_STYLE``
+        layout.footer.hide()
+        client.Style(SLIDER_NO_EASING + " " + BUSY_STYLE)
         with layout.toolbar:
             v3.VSpacer()
             with v3.VBtnToggle(v_model=("mode",), mandatory=True, density="compact"):
@@ -563,6 +576,8 @@ def build_app(session, server=None, view_mode: str = "auto"):
                            click="utils.download(f, trigger('studio_file', [f])); $event.preventDefault()")
             html.Div("{{ message }}", id="message", classes="text-body-2 pa-2 text-red")
         with layout.content:
+            html.Span("working...", id="busy", classes=(
+                "{'studio-busy': true, 'studio-busy--on': trame__busy, 'text-caption': true}",))
             with html.Div(style="display:flex; height:100%; width:100%"):
                 # the canvas's three layers (``canvas.layers``) one over the other: an edit
                 # replaces only the patches' SVG
