@@ -364,9 +364,9 @@ BUSY_VISIBLE = "getComputedStyle(document.querySelector('#busy')).visibility ===
 
 def test_the_working_note_shows_only_once_a_call_has_lasted(tmp_path):
     """No spinning progress circle on the page (trame's footer: it was animated for every call,
-    a slider step's included); the toolbar's "working..." note stays hidden through short calls
-    and shows once the page's busy flag (``trame__busy``, which trame's client sets while a
-    call is in flight) has been up for ``BUSY_AFTER_S``, and goes again when it drops."""
+    a slider step's included); the "working..." note in the page's corner stays hidden through
+    short calls and shows once the page's busy flag (``trame__busy``, which trame's client sets
+    while a call is in flight) has been up for ``BUSY_AFTER_S``, and goes again when it drops."""
     import time
 
     from stitchswitch.studio.app import BUSY_AFTER_S
